@@ -1,0 +1,3 @@
+//! Native command-line interface.
+
+fn main() {}
