@@ -1,0 +1,92 @@
+# torus-search: build, serve, test. Run `make help` for the list.
+# Scripts under scripts/ do the work; this file only orders them.
+SHELL := bash
+.SHELLFLAGS := -euo pipefail -c
+.DEFAULT_GOAL := help
+
+export PATH := $(HOME)/.cargo/bin:$(PATH)
+# wasm-bindgen-test-runner: headless Chromium via Debian's chromedriver
+# (capabilities in webdriver.json), and room for a slow cold start.
+export CHROMEDRIVER ?= /usr/bin/chromedriver
+export WASM_BINDGEN_TEST_TIMEOUT ?= 120
+# In CI, Cargo.lock must already be up to date.
+LOCKED := $(if $(filter true 1,$(CI)),--locked,)
+WASM := --target wasm32-unknown-unknown
+
+section = @printf '\n\033[1m==== %s ====\033[0m\n' "$(1)"
+
+.PHONY: help setup setup-browser build serve test bench dist clean \
+        _build _dist test-fmt test-clippy test-native test-wasm test-e2e
+
+help:
+	@echo "make setup   install the wasm32 target, pinned wasm-bindgen-cli, npm packages"
+	@echo "make build   build www/pkg (wasm-bindgen --target web) and www/vendor"
+	@echo "make serve   setup + build, then serve the page at http://127.0.0.1:8080/"
+	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
+	@echo "make bench   cargo bench, plus tests/e2e/bench.mjs if present"
+	@echo "make dist    self-contained static site in dist/"
+	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
+
+setup:
+	@scripts/setup.sh
+
+setup-browser:
+	@scripts/setup.sh --browser
+
+build: setup _build
+_build:
+	$(call section,build wasm package)
+	@scripts/build.sh
+
+serve: build
+	@scripts/serve.sh
+
+dist: build _dist
+_dist:
+	$(call section,dist)
+	@scripts/dist.sh
+
+test: setup-browser
+	@$(MAKE) --no-print-directory test-fmt
+	@$(MAKE) --no-print-directory test-clippy
+	@$(MAKE) --no-print-directory test-native
+	@$(MAKE) --no-print-directory test-wasm
+	@$(MAKE) --no-print-directory _build
+	@$(MAKE) --no-print-directory _dist
+	@$(MAKE) --no-print-directory test-e2e
+	$(call section,all tests passed)
+
+test-fmt:
+	$(call section,cargo fmt --check)
+	cargo fmt --all --check
+
+test-clippy:
+	$(call section,cargo clippy (native))
+	cargo clippy $(LOCKED) --all-targets -- -D warnings
+	$(call section,cargo clippy (wasm32))
+	cargo clippy $(LOCKED) $(WASM) --lib --tests -- -D warnings
+
+test-native:
+	$(call section,cargo test (native))
+	cargo test $(LOCKED)
+
+# --tests: lib, bin and tests/*.rs; doc tests run natively above.
+test-wasm:
+	$(call section,cargo test (wasm32: Node.js and headless Chromium))
+	cargo test $(LOCKED) $(WASM) --tests
+
+test-e2e:
+	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
+	node --test --test-concurrency=1 tests/e2e/*.test.mjs
+
+bench: setup
+	$(call section,cargo bench)
+	cargo bench $(LOCKED)
+	@if [[ -f tests/e2e/bench.mjs ]]; then \
+	  scripts/setup.sh --browser && scripts/build.sh && \
+	  printf '\n==== %s ====\n' "browser benchmark (tests/e2e/bench.mjs)" && \
+	  node tests/e2e/bench.mjs; \
+	fi
+
+clean:
+	rm -rf www/pkg www/vendor dist target/e2e

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Build the WebAssembly package into www/pkg and vendor browser libraries into
+# www/vendor (both are build outputs, ignored by git). Assumes scripts/setup.sh ran.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+[[ -x "$HOME/.cargo/bin/wasm-bindgen" && ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && export PATH="$HOME/.cargo/bin:$PATH"
+
+cargo build --lib --release --target wasm32-unknown-unknown
+wasm-bindgen --target web --out-dir www/pkg \
+  target/wasm32-unknown-unknown/release/torus_search.wasm
+
+# Vendored browser libraries: copied from node_modules (pinned by package-lock.json),
+# so the page loads them from its own origin and works offline.
+mkdir -p www/vendor
+vendor() { # vendor SRC DEST: copy only if changed
+  if ! cmp -s "$1" "$2"; then cp "$1" "$2"; fi
+}
+vendor node_modules/uplot/dist/uPlot.esm.js  www/vendor/uPlot.esm.js
+vendor node_modules/uplot/dist/uPlot.min.css www/vendor/uPlot.min.css
+vendor node_modules/uplot/LICENSE            www/vendor/uPlot.LICENSE
+
+echo "[build] www/pkg: $(du -sh www/pkg/torus_search_bg.wasm | cut -f1) wasm; www/vendor: $(ls www/vendor | tr '\n' ' ')"

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Serve a directory (default: the repository root) on http://127.0.0.1:PORT/
+# with Python's standard static server (serves .wasm as application/wasm).
+#   scripts/serve.sh [DIR]      PORT=8080 by default
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+dir="${1:-$root}"
+port="${PORT:-8080}"
+echo "Serving $dir at http://127.0.0.1:${port}/  (Ctrl-C to stop)"
+exec python3 -m http.server "$port" --bind 127.0.0.1 --directory "$dir"

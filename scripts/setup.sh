@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Idempotent installs for building and testing torus-search.
+#   scripts/setup.sh            wasm32 target, rustfmt/clippy, pinned wasm-bindgen-cli, npm ci
+#   scripts/setup.sh --browser  the same, plus Debian's chromium + chromium-driver
+# Each step checks first and is skipped when already satisfied, so a second run
+# takes a second or two.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+
+browser=0
+for arg in "$@"; do
+  case "$arg" in
+    --browser) browser=1 ;;
+    *) echo "usage: $0 [--browser]" >&2; exit 2 ;;
+  esac
+done
+
+say() { printf '[setup] %s\n' "$*"; }
+
+# --- Rust: wasm32 target and components ------------------------------------
+if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
+  say "adding rustup target wasm32-unknown-unknown"
+  rustup target add wasm32-unknown-unknown
+fi
+for comp in rustfmt clippy; do
+  if ! rustup component list --installed | grep -q "^${comp}"; then
+    say "adding rustup component $comp"
+    rustup component add "$comp"
+  fi
+done
+
+# --- wasm-bindgen-cli, pinned to the library version in Cargo.toml ---------
+want="$(scripts/wasm-bindgen-version.sh)"
+have_cli() {
+  command -v wasm-bindgen >/dev/null 2>&1 &&
+    command -v wasm-bindgen-test-runner >/dev/null 2>&1 &&
+    [[ "$(wasm-bindgen --version 2>/dev/null)" == "wasm-bindgen $want" ]]
+}
+if ! have_cli; then
+  if [[ ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && [[ -x "$HOME/.cargo/bin/wasm-bindgen" ]]; then
+    export PATH="$HOME/.cargo/bin:$PATH"
+  fi
+fi
+if have_cli; then
+  :
+else
+  say "installing wasm-bindgen-cli $want (cargo install, a few minutes cold)"
+  # Not --locked: the CLI's own lock file pins a webpki-roots version that the
+  # registry no longer serves, so cargo resolves fresh compatible versions.
+  cargo install wasm-bindgen-cli --version "$want" --force
+  have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is ~/.cargo/bin on PATH?)" >&2; exit 1; }
+fi
+
+# --- npm packages (playwright-core, uplot) from package-lock.json ----------
+stamp=node_modules/.torus-search-lock.sha256
+want_sum="$(cat package.json package-lock.json | sha256sum | cut -d' ' -f1)"
+if [[ ! -f "$stamp" ]] || [[ "$(cat "$stamp")" != "$want_sum" ]]; then
+  say "npm ci"
+  npm ci --no-audit --no-fund
+  echo "$want_sum" > "$stamp"
+fi
+
+# --- Chromium + chromedriver (only for targets that drive a browser) -------
+if [[ "$browser" == 1 ]]; then
+  if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
+    if [[ "$(id -u)" != 0 ]]; then
+      echo "error: chromium/chromedriver missing; run: sudo apt-get update && sudo apt-get install -y chromium chromium-driver" >&2
+      exit 1
+    fi
+    say "apt-get install chromium chromium-driver"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq
+    apt-get install -y -qq --no-install-recommends chromium chromium-driver fonts-liberation
+  fi
+fi
+say "ok (wasm-bindgen $want$([[ $browser == 1 ]] && echo ", $(chromium --version 2>/dev/null | head -n1)"))"
