@@ -13,7 +13,7 @@ export WASM_BINDGEN_TEST_TIMEOUT ?= 120
 LOCKED := $(if $(filter true 1,$(CI)),--locked,)
 WASM := --target wasm32-unknown-unknown
 
-section = @printf '\n\033[1m==== %s ====\033[0m\n' "$(1)"
+section = @printf '\n==== %s ====\n' "$(1)"
 
 .PHONY: help setup setup-browser build serve test bench dist clean \
         _build _dist test-fmt test-clippy test-native test-wasm test-e2e
@@ -54,7 +54,6 @@ test: setup-browser
 	@$(MAKE) --no-print-directory _build
 	@$(MAKE) --no-print-directory _dist
 	@$(MAKE) --no-print-directory test-e2e
-	$(call section,all tests passed)
 
 test-fmt:
 	$(call section,cargo fmt --check)
