@@ -253,10 +253,15 @@ export async function waitUntilRunning(page, { selector = 'canvas', timeoutMs = 
   const deadline = Date.now() + timeoutMs;
   let last = 'no state yet';
   while (Date.now() < deadline) {
-    const { state, hasCanvas } = await page.evaluate((sel) => ({
-      state: document.body?.dataset.state ?? null,
-      hasCanvas: document.querySelector(sel) !== null,
-    }), selector);
+    // page.evaluate has no timeout of its own (a busy main thread would hang it).
+    const { state, hasCanvas } = await withTimeout(
+      page.evaluate((sel) => ({
+        state: document.body?.dataset.state ?? null,
+        hasCanvas: document.querySelector(sel) !== null,
+      }), selector),
+      Math.max(1_000, deadline - Date.now()),
+      'reading the page state (main thread busy?)',
+    );
     if (state === 'error') {
       throw new Error(`page state is 'error'${report ? `\n${describeProblems(report)}` : ''}`);
     }
