@@ -1,0 +1,414 @@
+// Pure drawing: no engine calls, no game logic. Everything it draws is handed
+// to it in a `scene` object (typed-array views over wasm memory and plain
+// numbers); it never keeps those views past the draw call.
+//
+// Heatmaps: one RGBA buffer per layer (built in Rust, src/render.rs) goes
+// through ONE putImageData into an N×N offscreen canvas, which drawImage
+// scales onto the view with smoothing off. Paths are wrap-aware: a step that
+// crosses the boundary is drawn to the edge and continues from the opposite
+// edge, so no line ever crosses the grid.
+
+const MOVE_NAMES = ['Up', 'Right', 'Down', 'Left'];
+const MOVE_DELTAS = [[0, -1], [1, 0], [0, 1], [-1, 0]];
+
+export const COLORS = {
+  background: '#101418',
+  grid: 'rgba(255,255,255,0.10)',
+  frame: 'rgba(255,255,255,0.45)',
+  path: '#f2f5f7',
+  pathHalo: 'rgba(0,0,0,0.65)',
+  rollout: 'rgba(120,200,255,0.55)',
+  searcher: '#ffffff',
+  start: '#7fd4ff',
+  target: '#ff5fa2',
+  practice: '#7fd4ff',
+  chosen: '#ffd166',
+  arrow: 'rgba(255,255,255,0.85)',
+  fade: 'rgba(16,20,24,0.62)',
+};
+
+function cellXY(idx, n) {
+  return [idx % n, (idx / n) | 0];
+}
+
+/** Signed shortest displacement from a to b on a ring of size n. */
+function wrapDelta(a, b, n) {
+  let d = b - a;
+  if (d > n / 2) d -= n;
+  else if (d < -n / 2) d += n;
+  return d;
+}
+
+/**
+ * Appends the wrap-aware segments of a cell path (indices) to a Path2D, in
+ * cell units (cell centres at x+0.5). A step whose shortest displacement
+ * leaves the grid is drawn from its start to beyond the edge, then again from
+ * beyond the opposite edge to its end (the caller clips to the grid).
+ */
+export function appendWrapPath(p2d, cells, from, to, n) {
+  if (to - from < 1) return;
+  let [px, py] = cellXY(cells[from], n);
+  p2d.moveTo(px + 0.5, py + 0.5);
+  for (let i = from + 1; i < to; i++) {
+    const [x, y] = cellXY(cells[i], n);
+    const dx = wrapDelta(px, x, n);
+    const dy = wrapDelta(py, y, n);
+    const ux = px + dx;
+    const uy = py + dy;
+    if (ux < 0 || ux >= n || uy < 0 || uy >= n) {
+      // Leaves the grid: draw to the (unwrapped) end point, which is clipped
+      // at the edge, then re-enter from the opposite side.
+      p2d.lineTo(ux + 0.5, uy + 0.5);
+      p2d.moveTo(x - dx + 0.5, y - dy + 0.5);
+    }
+    p2d.lineTo(x + 0.5, y + 0.5);
+    px = x;
+    py = y;
+  }
+}
+
+/**
+ * Splits a path into the visible segments, for tests: returns a list of
+ * [x0,y0,x1,y1] in cell units after clipping to [0,n]². Mirrors appendWrapPath.
+ */
+export function wrapSegments(cells, n) {
+  const segs = [];
+  const clip = (x0, y0, x1, y1) => {
+    // Axis-aligned or diagonal steps: clamp both ends into the box.
+    const c = (v) => Math.min(n, Math.max(0, v));
+    segs.push([c(x0), c(y0), c(x1), c(y1)]);
+  };
+  for (let i = 1; i < cells.length; i++) {
+    const [px, py] = cellXY(cells[i - 1], n);
+    const [x, y] = cellXY(cells[i], n);
+    const dx = wrapDelta(px, x, n);
+    const dy = wrapDelta(py, y, n);
+    const ux = px + dx;
+    const uy = py + dy;
+    if (ux < 0 || ux >= n || uy < 0 || uy >= n) {
+      clip(px + 0.5, py + 0.5, ux + 0.5, uy + 0.5);
+      clip(x - dx + 0.5, y - dy + 0.5, x + 0.5, y + 0.5);
+    } else {
+      clip(px + 0.5, py + 0.5, x + 0.5, y + 0.5);
+    }
+  }
+  return segs;
+}
+
+/** Caches a long path as immutable Path2D chunks, so each frame only builds the new tail. */
+class PathCache {
+  constructor(chunk = 512) {
+    this.chunk = chunk;
+    this.reset(0);
+  }
+  reset(n) {
+    this.n = n;
+    this.chunks = [];
+    this.done = 0; // path points covered by full chunks (overlapping by one point)
+  }
+  /** Returns Path2D objects covering cells[0..len). */
+  paths(cells, len, n) {
+    if (n !== this.n || len < this.done) this.reset(n);
+    while (len - this.done > this.chunk) {
+      const p = new Path2D();
+      const from = Math.max(0, this.done - 1);
+      appendWrapPath(p, cells, from, this.done + this.chunk, n);
+      this.chunks.push(p);
+      this.done += this.chunk;
+    }
+    const tail = new Path2D();
+    appendWrapPath(tail, cells, Math.max(0, this.done - 1), len, n);
+    return [...this.chunks, tail];
+  }
+}
+
+export class Renderer {
+  /**
+   * @param {HTMLCanvasElement} canvas the view
+   */
+  constructor(canvas) {
+    this.canvas = canvas;
+    this.ctx = canvas.getContext('2d', { alpha: false });
+    this.offscreen = document.createElement('canvas');
+    this.offCtx = this.offscreen.getContext('2d');
+    this.pathCache = new PathCache();
+    this.n = 0;
+    this.tiling = false;
+    this.layout();
+  }
+
+  /** Recomputes cell size from the canvas's pixel size. */
+  layout() {
+    const size = Math.min(this.canvas.width, this.canvas.height);
+    const n = Math.max(this.n, 1);
+    const tiles = this.tiling ? 3 : 1;
+    this.cell = size / (n * tiles);
+    this.origin = this.tiling ? n * this.cell : 0; // pixel offset of the main grid
+    this.size = size;
+  }
+
+  /** Sizes the backing store to the element's CSS size × devicePixelRatio. */
+  fitToElement() {
+    const rect = this.canvas.getBoundingClientRect();
+    const dpr = Math.min(window.devicePixelRatio || 1, 3);
+    const side = Math.max(64, Math.round(Math.min(rect.width, rect.height || rect.width) * dpr));
+    if (this.canvas.width !== side || this.canvas.height !== side) {
+      this.canvas.width = side;
+      this.canvas.height = side;
+    }
+    this.layout();
+  }
+
+  /** Maps a pointer position to a 0-based cell index, or -1. Tiles map onto the main grid. */
+  cellAt(clientX, clientY) {
+    const rect = this.canvas.getBoundingClientRect();
+    if (!this.n || rect.width === 0) return -1;
+    const sx = ((clientX - rect.left) / rect.width) * this.canvas.width;
+    const sy = ((clientY - rect.top) / rect.height) * this.canvas.height;
+    const tiles = this.tiling ? 3 : 1;
+    let x = Math.floor(sx / this.cell);
+    let y = Math.floor(sy / this.cell);
+    if (x < 0 || y < 0 || x >= this.n * tiles || y >= this.n * tiles) return -1;
+    x %= this.n;
+    y %= this.n;
+    return y * this.n + x;
+  }
+
+  /**
+   * Draws one frame.
+   * scene = {
+   *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n) }],
+   *   path: Uint32Array, pathLen, start, position, target (−1 = none), showTarget,
+   *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
+   *   decision: { visits: [4], chosen } | null, grid: bool, tiling: bool, found: bool
+   * }
+   */
+  draw(scene) {
+    const { n } = scene;
+    if (n !== this.n || !!scene.tiling !== this.tiling) {
+      this.n = n;
+      this.tiling = !!scene.tiling;
+      this.layout();
+    }
+    const ctx = this.ctx;
+    const cs = this.cell;
+    const gridPx = n * cs;
+    const tiles = this.tiling ? [-1, 0, 1] : [0];
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.fillStyle = COLORS.background;
+    ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
+
+    // Heatmap layers: one putImageData each, scaled by drawImage.
+    if (this.offscreen.width !== n) {
+      this.offscreen.width = n;
+      this.offscreen.height = n;
+    }
+    ctx.imageSmoothingEnabled = false;
+    for (const layer of scene.layers) {
+      if (!layer || !layer.rgba || layer.rgba.length !== 4 * n * n) continue;
+      this.offCtx.putImageData(new ImageData(layer.rgba, n, n), 0, 0);
+      for (const ty of tiles) {
+        for (const tx of tiles) {
+          ctx.drawImage(this.offscreen, 0, 0, n, n, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
+        }
+      }
+    }
+
+    // Everything in cell units from here on, translated per tile.
+    const lw = (px) => px / cs; // a width in device pixels, expressed in cell units
+    const eachTile = (fn) => {
+      for (const ty of tiles) {
+        for (const tx of tiles) {
+          ctx.setTransform(cs, 0, 0, cs, this.origin + tx * gridPx, this.origin + ty * gridPx);
+          fn(tx, ty);
+        }
+      }
+    };
+    ctx.save();
+    if (!this.tiling) {
+      ctx.beginPath();
+      ctx.rect(0, 0, gridPx, gridPx);
+      ctx.clip();
+    }
+    ctx.lineCap = 'round';
+    ctx.lineJoin = 'round';
+
+    // Rollout traces (faint, oldest faintest).
+    const rollouts = scene.rollouts || [];
+    rollouts.forEach((trace, i) => {
+      if (!trace || trace.length < 2) return;
+      const p = new Path2D();
+      appendWrapPath(p, trace, 0, trace.length, n);
+      const a = 0.25 + 0.55 * ((i + 1) / rollouts.length);
+      eachTile(() => {
+        ctx.globalAlpha = a;
+        ctx.strokeStyle = COLORS.rollout;
+        ctx.lineWidth = lw(Math.max(1, cs * 0.12));
+        ctx.stroke(p);
+      });
+    });
+    ctx.globalAlpha = 1;
+
+    // The searcher's path, with a dark halo so it reads on any heatmap.
+    if (scene.path && scene.pathLen > 1) {
+      const paths = this.pathCache.paths(scene.path, scene.pathLen, n);
+      const w = Math.max(1.5, Math.min(cs * 0.28, 6));
+      eachTile(() => {
+        ctx.strokeStyle = COLORS.pathHalo;
+        ctx.lineWidth = lw(w + 2);
+        for (const p of paths) ctx.stroke(p);
+        ctx.strokeStyle = COLORS.path;
+        ctx.lineWidth = lw(w);
+        for (const p of paths) ctx.stroke(p);
+      });
+    } else {
+      this.pathCache.reset(n);
+    }
+
+    const markerR = Math.max(0.5, 5 / cs); // at least 5 device px
+    const ring = (idx, r, color, width, dash) => {
+      const [x, y] = cellXY(idx, n);
+      ctx.beginPath();
+      ctx.arc(x + 0.5, y + 0.5, r, 0, 2 * Math.PI);
+      ctx.setLineDash(dash ? dash.map(lw) : []);
+      ctx.strokeStyle = color;
+      ctx.lineWidth = lw(width);
+      ctx.stroke();
+      ctx.setLineDash([]);
+    };
+    eachTile(() => {
+      // Start: a square outline.
+      if (scene.start >= 0) {
+        const [x, y] = cellXY(scene.start, n);
+        const h = Math.max(0.45, markerR);
+        ctx.strokeStyle = COLORS.start;
+        ctx.lineWidth = lw(2);
+        ctx.strokeRect(x + 0.5 - h, y + 0.5 - h, 2 * h, 2 * h);
+      }
+      // Practice target of the current loop: a small diamond.
+      if (scene.practice >= 0) {
+        const [x, y] = cellXY(scene.practice, n);
+        const h = Math.max(0.4, markerR * 0.9);
+        ctx.beginPath();
+        ctx.moveTo(x + 0.5, y + 0.5 - h);
+        ctx.lineTo(x + 0.5 + h, y + 0.5);
+        ctx.lineTo(x + 0.5, y + 0.5 + h);
+        ctx.lineTo(x + 0.5 - h, y + 0.5);
+        ctx.closePath();
+        ctx.strokeStyle = COLORS.practice;
+        ctx.lineWidth = lw(1.5);
+        ctx.stroke();
+      }
+      // Target: a cross in a ring, only when found or revealed.
+      if (scene.showTarget && scene.target >= 0) {
+        const [x, y] = cellXY(scene.target, n);
+        const h = Math.max(0.5, markerR * 1.2);
+        ctx.beginPath();
+        ctx.moveTo(x + 0.5 - h, y + 0.5 - h);
+        ctx.lineTo(x + 0.5 + h, y + 0.5 + h);
+        ctx.moveTo(x + 0.5 + h, y + 0.5 - h);
+        ctx.lineTo(x + 0.5 - h, y + 0.5 + h);
+        ctx.strokeStyle = '#000';
+        ctx.lineWidth = lw(4);
+        ctx.stroke();
+        ctx.strokeStyle = COLORS.target;
+        ctx.lineWidth = lw(2.2);
+        ctx.stroke();
+        ring(scene.target, h * 1.25, COLORS.target, 2);
+      }
+      // Searcher: a filled disc, plus its vision radius when visible.
+      if (scene.position >= 0) {
+        const [x, y] = cellXY(scene.position, n);
+        if (scene.rv > 0 && scene.rv * cs >= 6) ring(scene.position, scene.rv + 0.5, 'rgba(255,255,255,0.5)', 1, [3, 3]);
+        ctx.beginPath();
+        ctx.arc(x + 0.5, y + 0.5, Math.max(0.38, markerR), 0, 2 * Math.PI);
+        ctx.fillStyle = COLORS.searcher;
+        ctx.fill();
+        ctx.strokeStyle = '#000';
+        ctx.lineWidth = lw(1.5);
+        ctx.stroke();
+      }
+    });
+
+    // Decision arrows around the searcher (main tile only).
+    const d = scene.decision;
+    if (d && scene.position >= 0 && d.visits) {
+      ctx.setTransform(cs, 0, 0, cs, this.origin, this.origin);
+      const total = d.visits.reduce((a, b) => a + b, 0) || 1;
+      const [x, y] = cellXY(scene.position, n);
+      const maxLen = Math.max(1.6, 28 / cs);
+      for (let m = 0; m < 4; m++) {
+        const share = d.visits[m] / total;
+        if (share <= 0) continue;
+        const [ddx, ddy] = MOVE_DELTAS[m];
+        const len = 0.6 + maxLen * share;
+        const x0 = x + 0.5 + ddx * 0.55;
+        const y0 = y + 0.5 + ddy * 0.55;
+        const x1 = x + 0.5 + ddx * len;
+        const y1 = y + 0.5 + ddy * len;
+        const chosen = m === d.chosen;
+        const w = lw(chosen ? 3.5 : 2);
+        ctx.strokeStyle = '#000';
+        ctx.lineWidth = w + lw(2);
+        arrow(ctx, x0, y0, x1, y1, lw(7));
+        ctx.strokeStyle = chosen ? COLORS.chosen : COLORS.arrow;
+        ctx.lineWidth = w;
+        arrow(ctx, x0, y0, x1, y1, lw(7));
+      }
+    }
+    ctx.restore();
+
+    // Faded copies around the main grid in the periodic view.
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    if (this.tiling) {
+      ctx.fillStyle = COLORS.fade;
+      ctx.fillRect(0, 0, this.size, this.origin);
+      ctx.fillRect(0, this.origin + gridPx, this.size, this.size - this.origin - gridPx);
+      ctx.fillRect(0, this.origin, this.origin, gridPx);
+      ctx.fillRect(this.origin + gridPx, this.origin, this.size - this.origin - gridPx, gridPx);
+    }
+
+    // Grid lines when cells are big enough.
+    if (scene.grid !== false && cs >= 7) {
+      const p = new Path2D();
+      const span = this.tiling ? 3 * n : n;
+      const total = span * cs;
+      for (let i = 0; i <= span; i++) {
+        const v = Math.round(i * cs) + 0.5;
+        p.moveTo(v, 0);
+        p.lineTo(v, total);
+        p.moveTo(0, v);
+        p.lineTo(total, v);
+      }
+      ctx.strokeStyle = COLORS.grid;
+      ctx.lineWidth = 1;
+      ctx.stroke(p);
+    }
+    if (this.tiling) {
+      ctx.strokeStyle = COLORS.frame;
+      ctx.lineWidth = 2;
+      ctx.strokeRect(this.origin, this.origin, gridPx, gridPx);
+    }
+  }
+}
+
+function arrow(ctx, x0, y0, x1, y1, head) {
+  const ang = Math.atan2(y1 - y0, x1 - x0);
+  ctx.beginPath();
+  ctx.moveTo(x0, y0);
+  ctx.lineTo(x1, y1);
+  ctx.moveTo(x1 - head * Math.cos(ang - 0.5), y1 - head * Math.sin(ang - 0.5));
+  ctx.lineTo(x1, y1);
+  ctx.lineTo(x1 - head * Math.cos(ang + 0.5), y1 - head * Math.sin(ang + 0.5));
+  ctx.stroke();
+}
+
+/** Draws a horizontal colour bar from a 256×4 RGBA lookup table into a small canvas. */
+export function drawColorbar(canvas, lut) {
+  const ctx = canvas.getContext('2d');
+  canvas.width = 256;
+  canvas.height = 1;
+  ctx.putImageData(new ImageData(new Uint8ClampedArray(lut), 256, 1), 0, 0);
+}
+
+export { MOVE_NAMES, MOVE_DELTAS };
