@@ -1,0 +1,78 @@
+//! Fixed workloads for benchmarks. They do no timing (the caller times them
+//! with its own clock: `Instant` natively, `performance.now()` in wasm), so
+//! the same work is measured on every platform.
+
+use crate::config::{Config, ConfigError};
+use crate::episode::Episode;
+use crate::lattice::{Sensor, Torus};
+use crate::prior::{PriorSpec, TargetPrior};
+use crate::rng;
+use crate::searchers::{NoVisit, Policy, PolicyKind};
+
+/// Runs rollouts of `kind` between uniformly random start and target cells on
+/// an `n`×`n` torus with radius `rv` until at least `min_steps` lattice steps
+/// are made. Returns the steps made.
+///
+/// # Errors
+/// A [`ConfigError`] for a bad `n`, `rv` or `mu`.
+pub fn rollout_steps(
+    kind: PolicyKind,
+    n: u32,
+    rv: f64,
+    mu: f64,
+    seed: u64,
+    min_steps: u64,
+) -> Result<u64, ConfigError> {
+    let torus = Torus::new(n).map_err(|e| ConfigError::new("n", n, e.to_string()))?;
+    let mut sensor =
+        Sensor::new(&torus, rv).map_err(|e| ConfigError::new("rv", rv, e.to_string()))?;
+    if !(mu > 1.0 && mu <= 3.0) {
+        return Err(ConfigError::new("mu", mu, "a number in (1, 3]"));
+    }
+    let uniform =
+        TargetPrior::new(&torus, &PriorSpec::Uniform).expect("uniform prior is always valid");
+    let mut policy = Policy::new(kind, &torus, mu, 0.2);
+    let mut r = rng::stream(seed, 0);
+    let mut total = 0u64;
+    while total < min_steps {
+        let target = uniform.sample(&mut r);
+        let start = uniform.sample(&mut r);
+        sensor.arm(target);
+        policy.begin(start, target);
+        let out = policy.rollout(&torus, sensor.mask(), &mut r, start, 1 << 30, &mut NoVisit);
+        total += out.steps as u64;
+    }
+    Ok(total)
+}
+
+/// Runs `loops` MCTS loops of trial 0 of `cfg` (moving on as decisions
+/// complete, starting new trials when one ends). Returns (loops, real moves,
+/// episodes finished).
+///
+/// # Errors
+/// A [`ConfigError`] naming the first invalid field.
+pub fn mcts_loops(cfg: &Config, seed: u64, loops: u64) -> Result<(u64, u64, u64), ConfigError> {
+    if cfg.searcher != crate::config::SearcherKind::Mcts {
+        return Err(ConfigError::new(
+            "searcher",
+            cfg.searcher.name(),
+            "mcts for a loop benchmark",
+        ));
+    }
+    let mut trial = 0;
+    let mut e = Episode::trial(cfg, seed, trial)?;
+    let (mut done, mut moves, mut episodes) = (0u64, 0u64, 0u64);
+    while done < loops {
+        let before = e.counters().rollouts;
+        if e.step_loops(64) {
+            moves += 1;
+        }
+        done += e.counters().rollouts - before;
+        if e.status() != crate::episode::Status::Running {
+            episodes += 1;
+            trial += 1;
+            e = Episode::trial(cfg, seed, trial)?;
+        }
+    }
+    Ok((done, moves, episodes))
+}

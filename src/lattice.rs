@@ -1,0 +1,385 @@
+//! The N×N torus: cells, the four moves, distances and detection.
+//!
+//! Cells are 0-based indices `y * n + x` internally and are shown to users
+//! 1-based as `(x + 1, y + 1)`, as in the paper.
+
+use std::fmt;
+
+/// Smallest and largest lattice side.
+pub const MIN_N: u32 = 3;
+/// Largest lattice side (keeps an episode at N = 1024 under 64 MiB).
+pub const MAX_N: u32 = 1024;
+
+/// One of the four unit moves. Screen convention: `Up` decreases `y`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Move {
+    Up = 0,
+    Right = 1,
+    Down = 2,
+    Left = 3,
+}
+
+impl Move {
+    /// All moves, in index order.
+    pub const ALL: [Move; 4] = [Move::Up, Move::Right, Move::Down, Move::Left];
+
+    /// The move with index `i & 3`.
+    #[inline]
+    pub fn from_index(i: u32) -> Move {
+        Move::ALL[(i & 3) as usize]
+    }
+
+    /// `(dx, dy)` of this move.
+    #[inline]
+    pub fn delta(self) -> (i32, i32) {
+        match self {
+            Move::Up => (0, -1),
+            Move::Right => (1, 0),
+            Move::Down => (0, 1),
+            Move::Left => (-1, 0),
+        }
+    }
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Move::Up => "up",
+            Move::Right => "right",
+            Move::Down => "down",
+            Move::Left => "left",
+        }
+    }
+}
+
+/// A lattice that cannot be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LatticeError {
+    /// N outside `MIN_N..=MAX_N`.
+    Size(i64),
+    /// A detection radius that is negative or not finite.
+    Radius(f64),
+    /// A cell outside the lattice (1-based coordinates as given).
+    Cell {
+        what: &'static str,
+        x: i64,
+        y: i64,
+        n: u32,
+    },
+}
+
+impl fmt::Display for LatticeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LatticeError::Size(n) => {
+                write!(f, "n must be an integer in {MIN_N}..={MAX_N}, got {n}")
+            }
+            LatticeError::Radius(r) => write!(f, "rv must be a finite number >= 0, got {r}"),
+            LatticeError::Cell { what, x, y, n } => {
+                write!(
+                    f,
+                    "{what} ({x},{y}) is outside the lattice: each coordinate must be in 1..={n}"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for LatticeError {}
+
+/// The periodic N×N lattice with a precomputed neighbour table.
+#[derive(Clone, Debug)]
+pub struct Torus {
+    n: u32,
+    /// `nbr[4 * cell + move]`: the hot loops index this instead of doing
+    /// modular arithmetic.
+    nbr: Vec<u32>,
+}
+
+impl Torus {
+    /// Builds the torus.
+    ///
+    /// # Errors
+    /// [`LatticeError::Size`] unless `MIN_N <= n <= MAX_N`.
+    pub fn new(n: u32) -> Result<Torus, LatticeError> {
+        if !(MIN_N..=MAX_N).contains(&n) {
+            return Err(LatticeError::Size(n as i64));
+        }
+        let cells = (n * n) as usize;
+        let mut nbr = Vec::with_capacity(4 * cells);
+        for y in 0..n {
+            for x in 0..n {
+                for m in Move::ALL {
+                    let (dx, dy) = m.delta();
+                    let nx = (x as i64 + dx as i64).rem_euclid(n as i64) as u32;
+                    let ny = (y as i64 + dy as i64).rem_euclid(n as i64) as u32;
+                    nbr.push(ny * n + nx);
+                }
+            }
+        }
+        Ok(Torus { n, nbr })
+    }
+
+    /// Side length N.
+    #[inline]
+    pub fn n(&self) -> u32 {
+        self.n
+    }
+
+    /// Number of cells N².
+    #[inline]
+    pub fn cells(&self) -> usize {
+        (self.n * self.n) as usize
+    }
+
+    /// The neighbour table, `4 * cell + move`.
+    #[inline]
+    pub fn neighbours(&self) -> &[u32] {
+        &self.nbr
+    }
+
+    /// The cell reached from `cell` by `m`.
+    #[inline]
+    pub fn step(&self, cell: u32, m: Move) -> u32 {
+        self.nbr[(cell * 4 + m as u32) as usize]
+    }
+
+    /// The cell at 0-based `(x, y)`, wrapping any integers onto the torus.
+    #[inline]
+    pub fn cell(&self, x: i64, y: i64) -> u32 {
+        let n = self.n as i64;
+        (y.rem_euclid(n) * n + x.rem_euclid(n)) as u32
+    }
+
+    /// 0-based `(x, y)` of `cell`.
+    #[inline]
+    pub fn xy(&self, cell: u32) -> (u32, u32) {
+        (cell % self.n, cell / self.n)
+    }
+
+    /// The cell at 1-based user coordinates.
+    ///
+    /// # Errors
+    /// [`LatticeError::Cell`] when a coordinate is outside `1..=n`.
+    pub fn cell_1based(&self, what: &'static str, x: i64, y: i64) -> Result<u32, LatticeError> {
+        let n = self.n as i64;
+        if !(1..=n).contains(&x) || !(1..=n).contains(&y) {
+            return Err(LatticeError::Cell {
+                what,
+                x,
+                y,
+                n: self.n,
+            });
+        }
+        Ok(((y - 1) * n + (x - 1)) as u32)
+    }
+
+    /// Signed shortest displacement from `a` to `b` along one axis, in `(-n/2, n/2]`.
+    #[inline]
+    pub fn axis_delta(&self, a: u32, b: u32) -> i32 {
+        let n = self.n as i32;
+        let d = (b as i32 - a as i32).rem_euclid(n);
+        if 2 * d > n {
+            d - n
+        } else {
+            d
+        }
+    }
+
+    /// Torus displacement `(dx, dy)` from cell `a` to cell `b`.
+    #[inline]
+    pub fn delta(&self, a: u32, b: u32) -> (i32, i32) {
+        let (ax, ay) = self.xy(a);
+        let (bx, by) = self.xy(b);
+        (self.axis_delta(ax, bx), self.axis_delta(ay, by))
+    }
+
+    /// Torus ℓ1 distance: Σ over axes of min(|d|, N − |d|).
+    ///
+    /// This is the fewest moves from `a` to `b`. The paper's piecewise
+    /// formula uses N/2 where N belongs in its middle cases; this one is
+    /// checked against breadth-first search in the tests.
+    #[inline]
+    pub fn l1(&self, a: u32, b: u32) -> u32 {
+        let (dx, dy) = self.delta(a, b);
+        dx.unsigned_abs() + dy.unsigned_abs()
+    }
+
+    /// Squared torus Euclidean distance.
+    #[inline]
+    pub fn dist2(&self, a: u32, b: u32) -> u64 {
+        let (dx, dy) = self.delta(a, b);
+        (dx as i64 * dx as i64 + dy as i64 * dy as i64) as u64
+    }
+}
+
+/// The set of displacements within a detection radius, and a byte mask
+/// that marks the cells within the radius of one armed target.
+#[derive(Clone, Debug)]
+pub struct Sensor {
+    rv: f64,
+    r2: u64,
+    offsets: Vec<(i32, i32)>,
+    mask: Vec<u8>,
+    armed: Option<u32>,
+    n: u32,
+}
+
+impl Sensor {
+    /// Builds the sensor for radius `rv` (Euclidean, on the torus).
+    ///
+    /// # Errors
+    /// [`LatticeError::Radius`] when `rv` is negative or not finite.
+    pub fn new(torus: &Torus, rv: f64) -> Result<Sensor, LatticeError> {
+        if !rv.is_finite() || rv < 0.0 {
+            return Err(LatticeError::Radius(rv));
+        }
+        let n = torus.n();
+        // Detection is d² ≤ rv²; the small slack keeps rv = √2 from losing
+        // the diagonal to rounding.
+        let r2 = (rv * rv + 1e-9).floor() as u64;
+        let reach = ((r2 as f64).sqrt().floor() as i64).min(n as i64);
+        let mut seen = vec![false; torus.cells()];
+        let mut offsets = Vec::new();
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                let c = torus.cell(dx, dy);
+                if seen[c as usize] {
+                    continue;
+                }
+                if torus.dist2(0, c) <= r2 {
+                    seen[c as usize] = true;
+                    offsets.push(torus.delta(0, c));
+                }
+            }
+        }
+        // Nearest offsets first makes `optimal_steps` and the arming loop
+        // touch the likeliest cells first; order does not affect results.
+        offsets.sort_by_key(|&(dx, dy)| (dx * dx + dy * dy, dy, dx));
+        Ok(Sensor {
+            rv,
+            r2,
+            offsets,
+            mask: vec![0; torus.cells()],
+            armed: None,
+            n,
+        })
+    }
+
+    /// The radius.
+    pub fn rv(&self) -> f64 {
+        self.rv
+    }
+
+    /// Displacements `(dx, dy)` within the radius (each cell once).
+    pub fn offsets(&self) -> &[(i32, i32)] {
+        &self.offsets
+    }
+
+    /// True when `a` detects a target at `b`.
+    #[inline]
+    pub fn detects(&self, torus: &Torus, a: u32, b: u32) -> bool {
+        torus.dist2(a, b) <= self.r2
+    }
+
+    /// Marks the cells that detect a target at `target` (disarming the previous one).
+    pub fn arm(&mut self, target: u32) {
+        if self.armed == Some(target) {
+            return;
+        }
+        self.disarm();
+        let n = self.n as i64;
+        let (tx, ty) = ((target % self.n) as i64, (target / self.n) as i64);
+        for &(dx, dy) in &self.offsets {
+            let c = ((ty + dy as i64).rem_euclid(n) * n + (tx + dx as i64).rem_euclid(n)) as usize;
+            self.mask[c] = 1;
+        }
+        self.armed = Some(target);
+    }
+
+    /// Clears the mask.
+    pub fn disarm(&mut self) {
+        if let Some(t) = self.armed.take() {
+            let n = self.n as i64;
+            let (tx, ty) = ((t % self.n) as i64, (t / self.n) as i64);
+            for &(dx, dy) in &self.offsets {
+                let c =
+                    ((ty + dy as i64).rem_euclid(n) * n + (tx + dx as i64).rem_euclid(n)) as usize;
+                self.mask[c] = 0;
+            }
+        }
+    }
+
+    /// The armed target, if any.
+    pub fn armed(&self) -> Option<u32> {
+        self.armed
+    }
+
+    /// The detection mask of the armed target (1 = detects).
+    #[inline]
+    pub fn mask(&self) -> &[u8] {
+        &self.mask
+    }
+
+    /// True when `cell` detects the armed target.
+    #[inline]
+    pub fn hit(&self, cell: u32) -> bool {
+        self.mask[cell as usize] != 0
+    }
+
+    /// Fewest moves from `start` until a target at `target` is detected.
+    pub fn optimal_steps(&self, torus: &Torus, start: u32, target: u32) -> u32 {
+        let (tx, ty) = torus.xy(target);
+        self.offsets
+            .iter()
+            .map(|&(dx, dy)| {
+                torus.l1(
+                    start,
+                    torus.cell(tx as i64 + dx as i64, ty as i64 + dy as i64),
+                )
+            })
+            .min()
+            .unwrap_or(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_bad_sizes_and_radii() {
+        assert_eq!(Torus::new(2).unwrap_err(), LatticeError::Size(2));
+        assert!(Torus::new(1025).is_err());
+        let t = Torus::new(5).unwrap();
+        assert!(Sensor::new(&t, -1.0).is_err());
+        assert!(Sensor::new(&t, f64::NAN).is_err());
+        assert!(t.cell_1based("start", 0, 1).is_err());
+        assert_eq!(t.cell_1based("start", 5, 5).unwrap(), 24);
+    }
+
+    #[test]
+    fn moves_wrap() {
+        let t = Torus::new(4).unwrap();
+        assert_eq!(t.step(0, Move::Left), 3);
+        assert_eq!(t.step(0, Move::Up), 12);
+        assert_eq!(t.step(15, Move::Right), 12);
+        assert_eq!(t.step(15, Move::Down), 3);
+    }
+
+    #[test]
+    fn radius_one_is_five_cells() {
+        let t = Torus::new(10).unwrap();
+        assert_eq!(Sensor::new(&t, 0.0).unwrap().offsets().len(), 1);
+        assert_eq!(Sensor::new(&t, 1.0).unwrap().offsets().len(), 5);
+        assert_eq!(Sensor::new(&t, 2f64.sqrt()).unwrap().offsets().len(), 9);
+        // A radius larger than the torus covers every cell once.
+        assert_eq!(
+            Sensor::new(&Torus::new(3).unwrap(), 50.0)
+                .unwrap()
+                .offsets()
+                .len(),
+            9
+        );
+    }
+}

@@ -1,0 +1,162 @@
+//! The `cells` variant: the paper's per-cell statistics and depth-1 selection.
+//!
+//! Every cell a loop passes through (the searcher's cell, the selected
+//! neighbour and each rollout cell, once per loop) gets one visit: the paper
+//! adds the result "to the data for each searcher location that the
+//! simulation visited". Each such cell is credited with the reward of its
+//! own stopping time, as the authors' `BackPropagate` credits each cell with
+//! the steps that remained after it: a cell first entered at index k of a
+//! loop that detects at index τ (root 0, selected neighbour 1) gets
+//! 1/(τ − k + 1), so the selected neighbour gets exactly 1/τ. The
+//! searcher's own cell gets the visit (it is N(v), the parent count) but no
+//! reward, as in the authors' scripts that raise only its count: were it
+//! credited with its best child's returns, its mean would rise above its
+//! neighbours' and the searcher would shuttle back to it forever. The table
+//! persists across the searcher's moves unless reset each move, as some of
+//! the paper's scripts do.
+
+use super::{argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
+use crate::lattice::Move;
+use crate::searchers::Visit;
+
+/// Per-cell MCTS statistics.
+#[derive(Clone, Debug)]
+pub struct CellTable {
+    visits: Vec<u32>,
+    reward: Vec<f64>,
+    stamp: Vec<u32>,
+    epoch: u32,
+    touched: Vec<(u32, u32)>,
+    selected: [u32; 4],
+}
+
+/// Records each distinct cell of a loop with the index of its first visit.
+struct Mark<'a> {
+    stamp: &'a mut [u32],
+    epoch: u32,
+    index: u32,
+    touched: &'a mut Vec<(u32, u32)>,
+}
+
+impl Visit for Mark<'_> {
+    #[inline]
+    fn visit(&mut self, cell: u32) {
+        let s = &mut self.stamp[cell as usize];
+        if *s != self.epoch {
+            *s = self.epoch;
+            self.touched.push((cell, self.index));
+        }
+        self.index += 1;
+    }
+}
+
+impl CellTable {
+    /// An empty table for `cells` cells.
+    pub fn new(cells: usize) -> CellTable {
+        CellTable {
+            visits: vec![0; cells],
+            reward: vec![0.0; cells],
+            stamp: vec![0; cells],
+            epoch: 0,
+            touched: Vec::new(),
+            selected: [0; 4],
+        }
+    }
+
+    /// Starts a decision; clears the table when `reset`.
+    pub fn begin_decision(&mut self, reset: bool) {
+        if reset {
+            self.visits.fill(0);
+            self.reward.fill(0.0);
+        }
+        self.selected = [0; 4];
+    }
+
+    /// Visit counts per cell (the visit-count heatmap).
+    pub fn visits(&self) -> &[u32] {
+        &self.visits
+    }
+
+    /// Summed rewards per cell.
+    pub fn rewards(&self) -> &[f64] {
+        &self.reward
+    }
+
+    /// The decision statistics at `root`.
+    pub fn view(&self, env_torus: &crate::lattice::Torus, root: u32, c: f64) -> DecisionView {
+        let parent = self.visits[root as usize];
+        let children = std::array::from_fn(|i| {
+            let cell = env_torus.step(root, Move::ALL[i]);
+            let (v, q) = (self.visits[cell as usize], self.reward[cell as usize]);
+            let (mean, explore, uct) = uct_terms(q, v, parent, c);
+            ChildStat {
+                cell,
+                visits: v,
+                reward: q,
+                mean,
+                explore,
+                uct,
+                selected: self.selected[i],
+            }
+        });
+        DecisionView {
+            parent_visits: parent,
+            c,
+            children,
+        }
+    }
+
+    /// One loop from `root`: select a neighbour, roll out, backpropagate.
+    pub fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
+        let view = self.view(env.torus, root, env.c);
+        // Unvisited neighbours come first (their UCT is +∞), ties at random.
+        let values = view.children.map(|ch| ch.uct);
+        let a = argmax_random(values, [true; 4], env.rng).unwrap_or(0);
+        let child = view.children[a].cell;
+        self.selected[a] += 1;
+
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamp.fill(0);
+            self.epoch = 1;
+        }
+        self.touched.clear();
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.clear();
+            t.push(root);
+            t.push(child);
+        }
+        let mut mark = Mark {
+            stamp: &mut self.stamp,
+            epoch: self.epoch,
+            index: 0,
+            touched: &mut self.touched,
+        };
+        mark.visit(root);
+        mark.visit(child);
+        let (steps, detected) = if env.mask[child as usize] != 0 {
+            (0, true)
+        } else {
+            let trace = env.trace.take();
+            let mut tee = Tee { inner: mark, trace };
+            let out = rollout(env, child, &mut tee);
+            env.trace = tee.trace;
+            (out.steps, out.detected)
+        };
+        // τ counts the move to the neighbour plus the rollout; a truncated
+        // rollout found nothing and earns nothing.
+        let tau = 1 + steps;
+        let reward = if detected { 1.0 / tau as f64 } else { 0.0 };
+        for &(c, k) in &self.touched {
+            self.visits[c as usize] += 1;
+            if detected && k > 0 {
+                self.reward[c as usize] += 1.0 / (tau + 1 - k) as f64;
+            }
+        }
+        LoopReport {
+            rollout_steps: steps,
+            detected,
+            reward,
+        }
+    }
+}

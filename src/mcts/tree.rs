@@ -1,0 +1,265 @@
+//! The `tree` variant: a real search tree of move sequences from the
+//! searcher's position, one node expanded per loop, subtree reuse after
+//! each real move, in a bounded arena.
+
+use super::{argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
+use crate::lattice::{Move, Torus};
+use crate::rng;
+use crate::searchers::NoVisit;
+
+const NONE: u32 = u32::MAX;
+
+/// Default arena cap: 131 072 nodes of 32 bytes, twice (live arena plus the
+/// scratch arena used when re-rooting) = 8 MiB.
+pub const DEFAULT_MAX_NODES: u32 = 1 << 17;
+/// The smallest arena: the root and its four children must fit.
+pub const MIN_MAX_NODES: u32 = 16;
+/// The largest arena cap accepted (2 × 512 MiB).
+pub const MAX_MAX_NODES: u32 = 1 << 24;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    reward: f64,
+    cell: u32,
+    visits: u32,
+    children: [u32; 4],
+}
+
+impl Node {
+    fn leaf(cell: u32) -> Node {
+        Node {
+            reward: 0.0,
+            cell,
+            visits: 0,
+            children: [NONE; 4],
+        }
+    }
+}
+
+/// A search tree rooted at the searcher's cell. The root is always node 0.
+#[derive(Clone, Debug)]
+pub struct Tree {
+    nodes: Vec<Node>,
+    scratch: Vec<Node>,
+    stack: Vec<(u32, u32)>,
+    path: Vec<u32>,
+    max_nodes: usize,
+    selected: [u32; 4],
+    full: bool,
+}
+
+impl Tree {
+    /// An empty tree whose arena holds at most `max_nodes` nodes.
+    pub fn new(max_nodes: u32) -> Tree {
+        Tree {
+            nodes: Vec::new(),
+            scratch: Vec::new(),
+            stack: Vec::new(),
+            path: Vec::new(),
+            max_nodes: max_nodes.max(MIN_MAX_NODES) as usize,
+            selected: [0; 4],
+            full: false,
+        }
+    }
+
+    /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
+    pub fn begin_decision(&mut self, root: u32) {
+        if self.nodes.first().map(|n| n.cell) != Some(root) {
+            self.nodes.clear();
+            self.nodes.push(Node::leaf(root));
+        }
+        self.selected = [0; 4];
+    }
+
+    /// Nodes in the arena.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// True when the arena holds no node.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// True once the arena cap stopped an expansion.
+    pub fn hit_cap(&self) -> bool {
+        self.full
+    }
+
+    /// Adds each node's visits to its cell in `out` (after zeroing it).
+    pub fn project(&self, out: &mut [u32]) {
+        out.fill(0);
+        for n in &self.nodes {
+            out[n.cell as usize] = out[n.cell as usize].saturating_add(n.visits);
+        }
+    }
+
+    /// The decision statistics of the root's children.
+    pub fn view(&self, torus: &Torus, root_cell: u32, c: f64) -> DecisionView {
+        let root = self.nodes.first().copied().unwrap_or(Node::leaf(root_cell));
+        let children = std::array::from_fn(|i| {
+            let cell = torus.step(root.cell, Move::ALL[i]);
+            let (v, q) = match root.children[i] {
+                NONE => (0, 0.0),
+                k => (self.nodes[k as usize].visits, self.nodes[k as usize].reward),
+            };
+            let (mean, explore, uct) = uct_terms(q, v, root.visits, c);
+            ChildStat {
+                cell,
+                visits: v,
+                reward: q,
+                mean,
+                explore,
+                uct,
+                selected: self.selected[i],
+            }
+        });
+        DecisionView {
+            parent_visits: root.visits,
+            c,
+            children,
+        }
+    }
+
+    fn select_child(&self, node: u32, env: &mut LoopEnv<'_>) -> Option<usize> {
+        let n = &self.nodes[node as usize];
+        let mut values = [0.0; 4];
+        let mut valid = [false; 4];
+        for i in 0..4 {
+            if n.children[i] != NONE {
+                let ch = &self.nodes[n.children[i] as usize];
+                values[i] = uct_terms(ch.reward, ch.visits, n.visits, env.c).2;
+                valid[i] = true;
+            }
+        }
+        argmax_random(values, valid, env.rng)
+    }
+
+    /// One loop: descend by UCT, expand one node, roll out, backpropagate.
+    ///
+    /// # Panics
+    /// If called before [`Tree::begin_decision`].
+    pub fn iterate(&mut self, env: &mut LoopEnv<'_>) -> LoopReport {
+        self.path.clear();
+        self.path.push(0);
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.clear();
+            t.push(self.nodes[0].cell);
+        }
+        let mut node = 0u32;
+        let mut depth = 0u32;
+        let mut terminal = false;
+        loop {
+            let cur = self.nodes[node as usize];
+            let mut miss = [0usize; 4];
+            let mut k = 0;
+            for i in 0..4 {
+                if cur.children[i] == NONE {
+                    miss[k] = i;
+                    k += 1;
+                }
+            }
+            let next = if k > 0 && self.nodes.len() < self.max_nodes {
+                // Expansion: one new node per loop, a random untried move.
+                let i = miss[rng::below(env.rng, k as u32) as usize];
+                let id = self.nodes.len() as u32;
+                self.nodes
+                    .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
+                self.nodes[node as usize].children[i] = id;
+                if depth == 0 {
+                    self.selected[i] += 1;
+                }
+                Some((id, true))
+            } else {
+                if k > 0 {
+                    self.full = true;
+                }
+                match self.select_child(node, env) {
+                    Some(i) => {
+                        if depth == 0 {
+                            self.selected[i] += 1;
+                        }
+                        Some((cur.children[i], false))
+                    }
+                    None => None,
+                }
+            };
+            let Some((id, expanded)) = next else { break };
+            node = id;
+            depth += 1;
+            self.path.push(id);
+            let cell = self.nodes[id as usize].cell;
+            if let Some(t) = env.trace.as_deref_mut() {
+                t.push(cell);
+            }
+            if env.mask[cell as usize] != 0 {
+                terminal = true;
+                break;
+            }
+            if expanded {
+                break;
+            }
+        }
+        let (steps, detected) = if terminal {
+            (0, true)
+        } else {
+            let from = self.nodes[node as usize].cell;
+            let trace = env.trace.take();
+            let mut tee = Tee {
+                inner: NoVisit,
+                trace,
+            };
+            let out = rollout(env, from, &mut tee);
+            env.trace = tee.trace;
+            (out.steps, out.detected)
+        };
+        // τ counts the tree path plus the rollout; depth ≥ 1 because the
+        // root always has a child (the arena holds at least 16 nodes).
+        let tau = depth + steps;
+        let reward = if detected && tau > 0 {
+            1.0 / tau as f64
+        } else {
+            0.0
+        };
+        for &id in &self.path {
+            let n = &mut self.nodes[id as usize];
+            n.visits += 1;
+            n.reward += reward;
+        }
+        LoopReport {
+            rollout_steps: steps,
+            detected,
+            reward,
+        }
+    }
+
+    /// Re-roots the tree at the child reached by `m`, keeping its subtree.
+    pub fn advance(&mut self, m: Move) {
+        let Some(root) = self.nodes.first() else {
+            return;
+        };
+        let keep = root.children[m as usize];
+        if keep == NONE {
+            self.nodes.clear();
+            return;
+        }
+        // Copy the kept subtree depth-first into the scratch arena, then swap.
+        self.scratch.clear();
+        self.stack.clear();
+        self.scratch.push(self.nodes[keep as usize]);
+        self.stack.push((keep, 0));
+        while let Some((old, new)) = self.stack.pop() {
+            let kids = self.nodes[old as usize].children;
+            for (i, &k) in kids.iter().enumerate() {
+                if k != NONE {
+                    let id = self.scratch.len() as u32;
+                    self.scratch.push(self.nodes[k as usize]);
+                    self.scratch[new as usize].children[i] = id;
+                    self.stack.push((k, id));
+                }
+            }
+        }
+        std::mem::swap(&mut self.nodes, &mut self.scratch);
+        self.full = false;
+    }
+}

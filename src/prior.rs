@@ -1,0 +1,335 @@
+//! Target priors: each samples a target and reports its exact mass over all N² cells.
+
+use crate::lattice::Torus;
+use crate::rng::{self, Rng};
+use std::fmt;
+
+/// Which prior, before it is built on a lattice.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum PriorSpec {
+    /// All mass on one cell; `None` means the paper's centre `(N/2+1, N/2+1)`.
+    Delta { cell: Option<u32> },
+    /// The paper's rounded, wrapped Gaussian with standard deviation `sigma`.
+    Gaussian { sigma: f64 },
+    /// Every cell equally likely (σ = ∞).
+    Uniform,
+    /// A user-supplied non-negative weight per cell, `y * n + x`.
+    Weights { weights: Vec<f64> },
+}
+
+/// A prior that cannot be built.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PriorError {
+    /// σ negative or NaN.
+    Sigma(f64),
+    /// A weight grid of the wrong length.
+    WeightsLen { got: usize, want: usize },
+    /// A negative or non-finite weight.
+    Weight { index: usize, value: f64 },
+    /// All weights zero.
+    WeightsZero,
+    /// A delta cell outside the lattice.
+    Cell(u32),
+}
+
+impl fmt::Display for PriorError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PriorError::Sigma(s) => write!(
+                f,
+                "sigma must be a number >= 0 (or inf for uniform), got {s}"
+            ),
+            PriorError::WeightsLen { got, want } => {
+                write!(f, "prior weights must have n*n = {want} entries, got {got}")
+            }
+            PriorError::Weight { index, value } => {
+                write!(
+                    f,
+                    "prior weight {index} must be a finite number >= 0, got {value}"
+                )
+            }
+            PriorError::WeightsZero => write!(f, "prior weights must not all be zero"),
+            PriorError::Cell(c) => write!(f, "delta prior cell index {c} is outside the lattice"),
+        }
+    }
+}
+
+impl std::error::Error for PriorError {}
+
+/// Beyond this many lattice widths the wrapped Gaussian differs from uniform
+/// by less than exp(−2π²·8²) per cell, far below f64 resolution, and drawing
+/// a raw normal would lose integer precision for huge σ.
+const UNIFORM_SIGMA_WIDTHS: f64 = 8.0;
+
+#[derive(Clone, Debug)]
+enum Sampler {
+    Delta(u32),
+    Gaussian { mu: f64, sigma: f64 },
+    Alias(Alias),
+}
+
+/// A prior built on a lattice.
+#[derive(Clone, Debug)]
+pub struct TargetPrior {
+    spec: PriorSpec,
+    n: u32,
+    mass: Vec<f64>,
+    sampler: Sampler,
+}
+
+impl TargetPrior {
+    /// Builds `spec` on `torus`.
+    ///
+    /// # Errors
+    /// A [`PriorError`] naming the bad value.
+    pub fn new(torus: &Torus, spec: &PriorSpec) -> Result<TargetPrior, PriorError> {
+        let n = torus.n();
+        let cells = torus.cells();
+        let centre = (n / 2) * n + n / 2;
+        let (mass, sampler) = match spec {
+            PriorSpec::Delta { cell } => {
+                let c = cell.unwrap_or(centre);
+                if c as usize >= cells {
+                    return Err(PriorError::Cell(c));
+                }
+                (delta_mass(cells, c), Sampler::Delta(c))
+            }
+            PriorSpec::Gaussian { sigma } => {
+                let s = *sigma;
+                if s.is_nan() || s < 0.0 {
+                    return Err(PriorError::Sigma(s));
+                }
+                if s == 0.0 {
+                    (delta_mass(cells, centre), Sampler::Delta(centre))
+                } else if s >= UNIFORM_SIGMA_WIDTHS * n as f64 {
+                    let m = vec![1.0 / cells as f64; cells];
+                    let a = Alias::new(&m);
+                    (m, Sampler::Alias(a))
+                } else {
+                    let mu = n as f64 / 2.0;
+                    let axis = wrapped_rounded_normal(n, mu, s);
+                    let mut m = Vec::with_capacity(cells);
+                    for y in 0..n as usize {
+                        for x in 0..n as usize {
+                            m.push(axis[x] * axis[y]);
+                        }
+                    }
+                    (m, Sampler::Gaussian { mu, sigma: s })
+                }
+            }
+            PriorSpec::Uniform => {
+                let m = vec![1.0 / cells as f64; cells];
+                let a = Alias::new(&m);
+                (m, Sampler::Alias(a))
+            }
+            PriorSpec::Weights { weights } => {
+                if weights.len() != cells {
+                    return Err(PriorError::WeightsLen {
+                        got: weights.len(),
+                        want: cells,
+                    });
+                }
+                if let Some((index, &value)) = weights
+                    .iter()
+                    .enumerate()
+                    .find(|(_, w)| !w.is_finite() || **w < 0.0)
+                {
+                    return Err(PriorError::Weight { index, value });
+                }
+                let total: f64 = weights.iter().sum();
+                if total <= 0.0 {
+                    return Err(PriorError::WeightsZero);
+                }
+                let m: Vec<f64> = weights.iter().map(|w| w / total).collect();
+                let a = Alias::new(&m);
+                (m, Sampler::Alias(a))
+            }
+        };
+        Ok(TargetPrior {
+            spec: spec.clone(),
+            n,
+            mass,
+            sampler,
+        })
+    }
+
+    /// The spec this prior was built from.
+    pub fn spec(&self) -> &PriorSpec {
+        &self.spec
+    }
+
+    /// Probability of each cell, `y * n + x`; sums to 1.
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+
+    /// The single cell of a delta prior.
+    pub fn delta_cell(&self) -> Option<u32> {
+        match self.sampler {
+            Sampler::Delta(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// Draws a target cell.
+    pub fn sample(&self, rng: &mut Rng) -> u32 {
+        match &self.sampler {
+            Sampler::Delta(c) => *c,
+            Sampler::Gaussian { mu, sigma } => {
+                // The paper: x, y ~ N(N/2, σ), rounded to the nearest lattice
+                // point and wrapped; the +1 shift is the 1-based display.
+                let n = self.n as f64;
+                let x = libm::round(mu + sigma * rng::standard_normal(rng)).rem_euclid(n) as u32;
+                let y = libm::round(mu + sigma * rng::standard_normal(rng)).rem_euclid(n) as u32;
+                y * self.n + x
+            }
+            Sampler::Alias(a) => a.sample(rng),
+        }
+    }
+}
+
+fn delta_mass(cells: usize, c: u32) -> Vec<f64> {
+    let mut m = vec![0.0; cells];
+    m[c as usize] = 1.0;
+    m
+}
+
+/// Standard normal upper tail Q(z) = P(Z > z), accurate in both tails.
+fn upper_tail(z: f64) -> f64 {
+    0.5 * libm::erfc(z / std::f64::consts::SQRT_2)
+}
+
+/// P(round(X) ≡ k mod n) for X ~ N(mu, sigma), each k in 0..n.
+fn wrapped_rounded_normal(n: u32, mu: f64, sigma: f64) -> Vec<f64> {
+    let nf = n as f64;
+    // Mass beyond 40σ is below 1e-300.
+    let span = 40.0 * sigma;
+    let lo_m = libm::floor((mu - span) / nf) as i64 - 1;
+    let hi_m = libm::ceil((mu + span) / nf) as i64 + 1;
+    let mut p = vec![0.0; n as usize];
+    for (k, pk) in p.iter_mut().enumerate() {
+        let mut s = 0.0;
+        for m in lo_m..=hi_m {
+            let a = (k as f64 + m as f64 * nf - 0.5 - mu) / sigma;
+            let b = (k as f64 + m as f64 * nf + 0.5 - mu) / sigma;
+            // P(a < Z ≤ b), computed on the side where it does not cancel.
+            s += if a >= 0.0 {
+                upper_tail(a) - upper_tail(b)
+            } else if b <= 0.0 {
+                upper_tail(-b) - upper_tail(-a)
+            } else {
+                1.0 - upper_tail(b) - upper_tail(-a)
+            };
+        }
+        *pk = s;
+    }
+    let total: f64 = p.iter().sum();
+    for v in &mut p {
+        *v /= total;
+    }
+    p
+}
+
+/// Walker/Vose alias table: O(1) sampling from a fixed discrete distribution.
+#[derive(Clone, Debug)]
+pub struct Alias {
+    prob: Vec<f64>,
+    alias: Vec<u32>,
+}
+
+impl Alias {
+    /// Builds the table for weights `w` (non-negative, positive sum).
+    pub fn new(w: &[f64]) -> Alias {
+        let len = w.len();
+        let total: f64 = w.iter().sum();
+        let mut prob: Vec<f64> = w.iter().map(|x| x * len as f64 / total).collect();
+        let mut alias: Vec<u32> = (0..len as u32).collect();
+        let mut small = Vec::new();
+        let mut large = Vec::new();
+        for (i, &p) in prob.iter().enumerate() {
+            if p < 1.0 {
+                small.push(i as u32);
+            } else {
+                large.push(i as u32);
+            }
+        }
+        while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
+            small.pop();
+            alias[s as usize] = l;
+            prob[l as usize] = (prob[l as usize] + prob[s as usize]) - 1.0;
+            if prob[l as usize] < 1.0 {
+                large.pop();
+                small.push(l);
+            }
+        }
+        // Leftovers are 1 up to rounding.
+        for i in small.into_iter().chain(large) {
+            prob[i as usize] = 1.0;
+        }
+        Alias { prob, alias }
+    }
+
+    /// Draws an index.
+    #[inline]
+    pub fn sample(&self, rng: &mut Rng) -> u32 {
+        let i = rng::below(rng, self.prob.len() as u32);
+        if rng::unit_f64(rng) < self.prob[i as usize] {
+            i
+        } else {
+            self.alias[i as usize]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn delta_centre_matches_paper_for_even_n() {
+        let t = Torus::new(40).unwrap();
+        let p = TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: 0.0 }).unwrap();
+        // (N/2+1, N/2+1) 1-based is (20, 20) 0-based.
+        assert_eq!(p.delta_cell(), Some(20 * 40 + 20));
+    }
+
+    #[test]
+    fn gaussian_mass_sums_to_one_and_converges_to_uniform() {
+        let t = Torus::new(20).unwrap();
+        for s in [0.3, 2.0, 5.0, 20.0, 100.0, 1e9, f64::INFINITY] {
+            let p = TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: s }).unwrap();
+            let total: f64 = p.mass().iter().sum();
+            assert!((total - 1.0).abs() < 1e-12, "sigma {s}: {total}");
+            if s >= 40.0 {
+                let u = 1.0 / 400.0;
+                assert!(p.mass().iter().all(|m| (m - u).abs() < 1e-12), "sigma {s}");
+            }
+        }
+    }
+
+    #[test]
+    fn rejects_bad_specs() {
+        let t = Torus::new(4).unwrap();
+        assert!(TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: -1.0 }).is_err());
+        assert!(TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: f64::NAN }).is_err());
+        assert!(TargetPrior::new(
+            &t,
+            &PriorSpec::Weights {
+                weights: vec![1.0; 3]
+            }
+        )
+        .is_err());
+        assert!(TargetPrior::new(
+            &t,
+            &PriorSpec::Weights {
+                weights: vec![0.0; 16]
+            }
+        )
+        .is_err());
+        let mut w = vec![1.0; 16];
+        w[3] = f64::INFINITY;
+        assert!(TargetPrior::new(&t, &PriorSpec::Weights { weights: w }).is_err());
+        assert!(TargetPrior::new(&t, &PriorSpec::Delta { cell: Some(16) }).is_err());
+    }
+}

@@ -1,0 +1,196 @@
+//! Walk policies. Each works standalone (one real move per call) and as an
+//! MCTS rollout (default) policy.
+
+mod greedy;
+mod levy;
+mod nsarw;
+mod random_walk;
+
+pub use greedy::Greedy;
+pub use levy::{flight_length, Levy};
+pub use nsarw::Nsarw;
+pub use random_walk::RandomWalk;
+
+use crate::lattice::{Move, Torus};
+use crate::rng::Rng;
+
+/// How a rollout ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outcome {
+    /// Unit moves made.
+    pub steps: u32,
+    /// False when the step cap cut the rollout short.
+    pub detected: bool,
+}
+
+/// Receives every cell a rollout enters, in order.
+pub trait Visit {
+    /// Called once per unit move with the cell entered.
+    fn visit(&mut self, cell: u32);
+}
+
+/// A visitor that records nothing (the fastest rollout).
+pub struct NoVisit;
+
+impl Visit for NoVisit {
+    #[inline(always)]
+    fn visit(&mut self, _: u32) {}
+}
+
+impl Visit for Vec<u32> {
+    #[inline]
+    fn visit(&mut self, cell: u32) {
+        self.push(cell);
+    }
+}
+
+/// The name of a walk policy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PolicyKind {
+    /// Uniform random walk.
+    Rw,
+    /// Lévy flight walked as unit moves.
+    Levy,
+    /// Nearly self-avoiding random walk.
+    Nsarw,
+    /// Shortest path toward the (practice) target, random with probability ε.
+    Greedy,
+}
+
+impl PolicyKind {
+    /// All kinds, for help texts.
+    pub const ALL: [PolicyKind; 4] = [
+        PolicyKind::Rw,
+        PolicyKind::Levy,
+        PolicyKind::Nsarw,
+        PolicyKind::Greedy,
+    ];
+
+    /// Lower-case name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PolicyKind::Rw => "rw",
+            PolicyKind::Levy => "levy",
+            PolicyKind::Nsarw => "nsarw",
+            PolicyKind::Greedy => "greedy",
+        }
+    }
+
+    /// Parses a lower-case name.
+    pub fn parse(s: &str) -> Option<PolicyKind> {
+        PolicyKind::ALL.into_iter().find(|k| k.name() == s)
+    }
+}
+
+/// A walk policy with its state.
+#[derive(Clone, Debug)]
+pub enum Policy {
+    Rw(RandomWalk),
+    Levy(Levy),
+    Nsarw(Nsarw),
+    Greedy(Greedy),
+}
+
+impl Policy {
+    /// Builds the policy `kind` for lattice `torus`.
+    ///
+    /// `mu` is the Lévy exponent and `epsilon` the greedy noise; both are
+    /// validated by the caller's config.
+    pub fn new(kind: PolicyKind, torus: &Torus, mu: f64, epsilon: f64) -> Policy {
+        match kind {
+            PolicyKind::Rw => Policy::Rw(RandomWalk),
+            PolicyKind::Levy => Policy::Levy(Levy::new(mu, torus.n())),
+            PolicyKind::Nsarw => Policy::Nsarw(Nsarw::new(torus.cells())),
+            PolicyKind::Greedy => Policy::Greedy(Greedy::new(epsilon)),
+        }
+    }
+
+    /// Which policy this is.
+    pub fn kind(&self) -> PolicyKind {
+        match self {
+            Policy::Rw(_) => PolicyKind::Rw,
+            Policy::Levy(_) => PolicyKind::Levy,
+            Policy::Nsarw(_) => PolicyKind::Nsarw,
+            Policy::Greedy(_) => PolicyKind::Greedy,
+        }
+    }
+
+    /// Forgets the walk's memory and starts afresh at `start`; `target` is
+    /// what a greedy walk heads for.
+    pub fn begin(&mut self, start: u32, target: u32) {
+        match self {
+            Policy::Rw(_) => {}
+            Policy::Levy(l) => l.begin(),
+            Policy::Nsarw(w) => w.begin(start),
+            Policy::Greedy(g) => g.begin(target),
+        }
+    }
+
+    /// One unit move from `cell`.
+    pub fn next_move(&mut self, torus: &Torus, rng: &mut Rng, cell: u32) -> Move {
+        match self {
+            Policy::Rw(w) => w.next_move(rng),
+            Policy::Levy(l) => l.next_move(rng),
+            Policy::Nsarw(w) => w.next_move(torus, rng, cell),
+            Policy::Greedy(g) => g.next_move(torus, rng, cell),
+        }
+    }
+
+    /// Applies [`Policy::next_move`] and returns the new cell, updating memory.
+    pub fn advance(&mut self, torus: &Torus, rng: &mut Rng, cell: u32) -> u32 {
+        let m = self.next_move(torus, rng, cell);
+        let next = torus.step(cell, m);
+        if let Policy::Nsarw(w) = self {
+            w.enter(next);
+        }
+        next
+    }
+
+    /// Walks from `start` until `mask[cell] != 0` or `cap` moves, after
+    /// [`Policy::begin`]. Every entered cell goes to `visit`.
+    pub fn rollout<V: Visit>(
+        &mut self,
+        torus: &Torus,
+        mask: &[u8],
+        rng: &mut Rng,
+        start: u32,
+        cap: u32,
+        visit: &mut V,
+    ) -> Outcome {
+        match self {
+            Policy::Rw(w) => w.rollout(torus, mask, rng, start, cap, visit),
+            _ => {
+                if mask[start as usize] != 0 {
+                    return Outcome {
+                        steps: 0,
+                        detected: true,
+                    };
+                }
+                let mut cell = start;
+                for steps in 1..=cap {
+                    cell = self.advance(torus, rng, cell);
+                    visit.visit(cell);
+                    if mask[cell as usize] != 0 {
+                        return Outcome {
+                            steps,
+                            detected: true,
+                        };
+                    }
+                }
+                Outcome {
+                    steps: cap,
+                    detected: false,
+                }
+            }
+        }
+    }
+
+    /// The walk's own per-cell visit counts (NSARW only).
+    pub fn counts(&self) -> Option<&[u32]> {
+        match self {
+            Policy::Nsarw(w) => Some(w.counts()),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! The simple random walk: each step is one of the four moves, uniformly.
+
+use super::{Outcome, Visit};
+use crate::lattice::{Move, Torus};
+use crate::rng::{self, Rng};
+
+/// Uniform random walk (no state).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RandomWalk;
+
+impl RandomWalk {
+    /// One uniformly random move.
+    #[inline]
+    pub fn next_move(&mut self, rng: &mut Rng) -> Move {
+        Move::from_index((rng::bits(rng) >> 62) as u32)
+    }
+
+    /// Walks from `start` until `mask` marks the cell or `cap` moves.
+    ///
+    /// The hot loop: 2 random bits per step from one 64-bit draw, the
+    /// neighbour table instead of modular arithmetic, one byte load for
+    /// detection, no allocation.
+    ///
+    /// # Panics
+    /// If `mask` is shorter than the lattice.
+    #[inline]
+    pub fn rollout<V: Visit>(
+        &mut self,
+        torus: &Torus,
+        mask: &[u8],
+        rng: &mut Rng,
+        start: u32,
+        cap: u32,
+        visit: &mut V,
+    ) -> Outcome {
+        let nbr = torus.neighbours();
+        assert!(mask.len() >= torus.cells() && (start as usize) < torus.cells());
+        if mask[start as usize] != 0 {
+            return Outcome {
+                steps: 0,
+                detected: true,
+            };
+        }
+        let mut pos = start as usize;
+        let mut steps = 0u32;
+        while steps < cap {
+            let chunk = (cap - steps).min(32);
+            let mut b = rng::bits(rng);
+            for i in 0..chunk {
+                // SAFETY: `pos` starts in range and every neighbour-table entry
+                // is a cell index < cells() = mask.len() bound checked above,
+                // and `4 * pos + 3 < nbr.len()`.
+                unsafe {
+                    pos = *nbr.get_unchecked(4 * pos + (b & 3) as usize) as usize;
+                    b >>= 2;
+                    visit.visit(pos as u32);
+                    if *mask.get_unchecked(pos) != 0 {
+                        return Outcome {
+                            steps: steps + i + 1,
+                            detected: true,
+                        };
+                    }
+                }
+            }
+            steps += chunk;
+        }
+        Outcome {
+            steps: cap,
+            detected: false,
+        }
+    }
+}

@@ -1,0 +1,190 @@
+//! Summaries over trials: means with t-based 95% confidence intervals, the
+//! paper's ASOO, ratios, quartiles.
+
+use crate::episode::{Counters, TrialResult};
+
+/// The two-sided 95% quantile of Student's t with `df` degrees of freedom.
+pub fn t975(df: u64) -> f64 {
+    const TABLE: [f64; 30] = [
+        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160,
+        2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056,
+        2.052, 2.048, 2.045, 2.042,
+    ];
+    match df {
+        0 => f64::NAN,
+        1..=30 => TABLE[df as usize - 1],
+        _ => {
+            // Cornish–Fisher expansion around z (Abramowitz & Stegun 26.7.5);
+            // error below 1e-5 for df > 30.
+            let z: f64 = 1.959_963_984_540_054;
+            let v = df as f64;
+            let z3 = z.powi(3);
+            let z5 = z.powi(5);
+            let z7 = z.powi(7);
+            let z9 = z.powi(9);
+            z + (z3 + z) / (4.0 * v)
+                + (5.0 * z5 + 16.0 * z3 + 3.0 * z) / (96.0 * v * v)
+                + (3.0 * z7 + 19.0 * z5 + 17.0 * z3 - 15.0 * z) / (384.0 * v.powi(3))
+                + (79.0 * z9 + 776.0 * z7 + 1482.0 * z5 - 1920.0 * z3 - 945.0 * z)
+                    / (92160.0 * v.powi(4))
+        }
+    }
+}
+
+/// Mean, standard deviation and 95% CI of a sample.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct MeanCi {
+    /// Sample size.
+    pub n: u64,
+    /// Sample mean (NaN when empty).
+    pub mean: f64,
+    /// Sample standard deviation (n − 1 denominator; NaN below 2).
+    pub sd: f64,
+    /// Lower end of the t-based 95% CI.
+    pub lo: f64,
+    /// Upper end of the t-based 95% CI.
+    pub hi: f64,
+}
+
+impl MeanCi {
+    /// Summarises `xs`.
+    pub fn of(xs: impl IntoIterator<Item = f64>) -> MeanCi {
+        // Welford: stable for long runs of large step counts.
+        let (mut n, mut mean, mut m2) = (0u64, 0.0f64, 0.0f64);
+        for x in xs {
+            n += 1;
+            let d = x - mean;
+            mean += d / n as f64;
+            m2 += d * (x - mean);
+        }
+        if n == 0 {
+            return MeanCi {
+                n,
+                mean: f64::NAN,
+                sd: f64::NAN,
+                lo: f64::NAN,
+                hi: f64::NAN,
+            };
+        }
+        if n == 1 {
+            return MeanCi {
+                n,
+                mean,
+                sd: f64::NAN,
+                lo: f64::NAN,
+                hi: f64::NAN,
+            };
+        }
+        let sd = (m2 / (n - 1) as f64).sqrt();
+        let half = t975(n - 1) * sd / (n as f64).sqrt();
+        MeanCi {
+            n,
+            mean,
+            sd,
+            lo: mean - half,
+            hi: mean + half,
+        }
+    }
+
+    /// Standard error of the mean.
+    pub fn se(&self) -> f64 {
+        self.sd / (self.n as f64).sqrt()
+    }
+}
+
+/// The quantile `q` of sorted data (linear interpolation, R type 7).
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let h = (sorted.len() - 1) as f64 * q;
+    let lo = h.floor() as usize;
+    let hi = h.ceil() as usize;
+    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
+}
+
+/// Everything reported over a batch of trials.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Summary {
+    /// Trials run.
+    pub trials: u64,
+    /// Steps per trial.
+    pub steps: MeanCi,
+    /// Optimal steps per trial.
+    pub optimal: MeanCi,
+    /// ASOO as the authors' code computes it: the mean of (steps − optimal).
+    pub asoo: MeanCi,
+    /// Mean of steps/optimal over trials with optimal > 0.
+    pub ratio: MeanCi,
+    /// Mean steps / mean optimal.
+    pub steps_over_mean_optimal: f64,
+    /// Median steps.
+    pub median_steps: f64,
+    /// First quartile of steps.
+    pub q1_steps: f64,
+    /// Third quartile of steps.
+    pub q3_steps: f64,
+    /// Trials excluded from the ratio because optimal = 0.
+    pub zero_optimal: u64,
+    /// Episodes ended by the step cap (failures, still counted above).
+    pub capped: u64,
+    /// Summed rollout counters.
+    pub counters: Counters,
+}
+
+impl Summary {
+    /// Summarises `results`.
+    pub fn of(results: &[TrialResult]) -> Summary {
+        let steps = MeanCi::of(results.iter().map(|r| r.steps as f64));
+        let optimal = MeanCi::of(results.iter().map(|r| r.optimal as f64));
+        let asoo = MeanCi::of(results.iter().map(|r| r.steps as f64 - r.optimal as f64));
+        let ratio = MeanCi::of(results.iter().filter_map(TrialResult::ratio));
+        let mut sorted: Vec<f64> = results.iter().map(|r| r.steps as f64).collect();
+        sorted.sort_by(f64::total_cmp);
+        let mut counters = Counters::default();
+        for r in results {
+            counters.rollouts += r.counters.rollouts;
+            counters.rollout_steps += r.counters.rollout_steps;
+            counters.truncated += r.counters.truncated;
+        }
+        Summary {
+            trials: results.len() as u64,
+            steps,
+            optimal,
+            asoo,
+            ratio,
+            steps_over_mean_optimal: steps.mean / optimal.mean,
+            median_steps: quantile(&sorted, 0.5),
+            q1_steps: quantile(&sorted, 0.25),
+            q3_steps: quantile(&sorted, 0.75),
+            zero_optimal: results.iter().filter(|r| r.optimal == 0).count() as u64,
+            capped: results.iter().filter(|r| !r.found).count() as u64,
+            counters,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn t_quantiles() {
+        assert!((t975(1) - 12.706).abs() < 1e-3);
+        assert!((t975(31) - 2.0395).abs() < 1e-3);
+        assert!((t975(100) - 1.98397).abs() < 1e-4);
+        assert!((t975(1_000_000) - 1.95997).abs() < 1e-4);
+    }
+
+    #[test]
+    fn mean_ci_and_quartiles() {
+        let m = MeanCi::of([1.0, 2.0, 3.0, 4.0, 5.0]);
+        assert_eq!(m.mean, 3.0);
+        assert!((m.sd - 2.5f64.sqrt()).abs() < 1e-12);
+        let half = 2.776 * m.sd / 5f64.sqrt();
+        assert!((m.hi - 3.0 - half).abs() < 1e-9);
+        let s = [1.0, 2.0, 3.0, 4.0];
+        assert_eq!(quantile(&s, 0.5), 2.5);
+        assert_eq!(quantile(&s, 0.25), 1.75);
+    }
+}
