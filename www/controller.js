@@ -46,7 +46,7 @@ export class Controller {
     this.state = 'idle';
     this.speed = 10; // loops per frame, or 'max'
     this.budgetMs = FRAME_BUDGET_MS;
-    this.chunk = 8; // adaptive chunk size for 'max'
+    this.loopMs = 0.05; // measured cost of one loop (ms), sizes the chunks
     this.rafId = 0;
     this.dirty = true;
     this.meter = { frames: [], loops: [], steps: [], fps: 0, loopsPerS: 0, stepsPerS: 0, workMs: 0 };
@@ -162,7 +162,12 @@ export class Controller {
     if (!this.rafId && typeof requestAnimationFrame !== 'undefined') this.rafId = requestAnimationFrame(this.frame);
   }
 
-  /** Runs engine work for at most budgetMs; returns loops done. */
+  /**
+   * Runs engine work for at most about budgetMs; returns loops done. Loops
+   * are issued in chunks sized from the measured cost per loop so that one
+   * chunk takes about a millisecond (a loop's rollout length varies a lot,
+   * but the rollout cap bounds it), and never more than the time left.
+   */
   work() {
     const t0 = this.now();
     const deadline = t0 + this.budgetMs;
@@ -172,16 +177,18 @@ export class Controller {
     while (remaining > 0) {
       const active = this.runs.filter((r) => r.status() === 'running');
       if (!active.length) break;
-      const k = Math.max(1, Math.min(remaining, max ? this.chunk : Math.min(this.chunk, remaining)));
+      const left = deadline - this.now();
+      if (left <= 0) break;
+      const perLoop = this.loopMs * active.length;
+      const fit = Math.floor(Math.min(1, left) / Math.max(perLoop, 1e-4));
+      const k = Math.max(1, Math.min(remaining, fit, 1 << 14));
       const c0 = this.now();
       for (const r of active) r.stepLoops(k);
       const dt = this.now() - c0;
+      // Exponential average of ms per loop per run (chunks of 1 are noisy).
+      this.loopMs = 0.7 * this.loopMs + 0.3 * (dt / k / active.length);
       loops += k;
       remaining -= k;
-      // Keep one chunk near 1 ms so the deadline is checked often.
-      if (dt < 0.5) this.chunk = Math.min(this.chunk * 2, 1 << 16);
-      else if (dt > 2) this.chunk = Math.max(1, this.chunk >> 1);
-      if (this.now() >= deadline) break;
     }
     this.meter.workMs = this.now() - t0;
     return loops;

@@ -28,7 +28,7 @@ export function describeError(err) {
     } catch {
       /* the module may be unusable after a trap */
     }
-    return `The engine crashed (wasm panic): ${panic || err.message}. Restart to try again; if it persists please report it with the copied link.`;
+    return `The engine crashed (wasm panic): ${(panic || err.message).replace(/\s*\n\s*/g, " ")}. Restart to try again; if it persists please report it with the copied link.`;
   }
   return err && err.message ? err.message : String(err);
 }
@@ -84,6 +84,7 @@ export class Run {
     this.targetCell = this.h.target();
     this.optimalSteps = this.h.optimal();
     this.walkerMoves = 0;
+    this.pacer = null; // () => max steps allowed now (race pacing), or null
     this.timeline = [[0, 0]]; // [seconds of running time, steps]
   }
 
@@ -103,7 +104,9 @@ export class Run {
   stepLoops(k) {
     let moves = 0;
     if (!this.isMcts) {
-      for (let i = 0; i < k && this.h.status() === 'running'; i++) {
+      // Paced by an MCTS opponent in a race: never more real moves than it.
+      const limit = this.pacer ? Math.min(k, this.pacer() - this.h.steps()) : k;
+      for (let i = 0; i < limit && this.h.status() === 'running'; i++) {
         if (this.h.stepLoops(1)) moves++;
       }
       this.walkerMoves += moves;

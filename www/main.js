@@ -4,7 +4,7 @@
 
 import { loadEngine, Run, views, coreConfig, RACE, describeError } from './engine.js';
 import { parseParams, parseValue, serializeConfig, defaults, describeSearcher, encodePaint, decodePaint, SPECS } from './url-state.js';
-import { Renderer, drawColorbar, MOVE_NAMES } from './renderer.js';
+import { Renderer, drawColorbar, drawNotice, MOVE_NAMES } from './renderer.js';
 import { Controller } from './controller.js';
 import { StepsChart } from './charts.js';
 
@@ -75,6 +75,14 @@ function createRuns() {
     const override = RACE[cfg.race];
     const label = describeSearcher({ ...cfg, ...override });
     runs.push(new Run(coreConfig(cfg, { weights, keepTraces: page.keepTraces, override }), cfg.seed, label));
+    // A walker racing MCTS moves in step with it (one real move each), so the
+    // boards compare paths rather than compute; once MCTS is done it runs free.
+    const [a, b] = runs;
+    const pace = (walker, mcts) => {
+      walker.pacer = () => (mcts.status() === 'running' ? mcts.h.steps() : Infinity);
+    };
+    if (a.isMcts && !b.isMcts) pace(b, a);
+    else if (!a.isMcts && b.isMcts) pace(a, b);
   }
   page.layerCache = [new Map(), new Map()];
   page.runTime = 0;
@@ -320,9 +328,11 @@ function applyPreset(name) {
   page.paint = null;
   syncControls();
   updateUrl();
-  showMessage(name === 'teaching' ? 'Teaching view: one loop per frame. Watch a practice target (◇) get drawn, a neighbour get selected by UCT, a random rollout run until it finds the practice target, and the visit counts update. Use ↑ to step a single loop.' : '');
   page.controller.setSpeed(d.speed);
   restart({ autoplay: true });
+  if (name === 'teaching') {
+    showMessage('Teaching view: one MCTS loop per frame. Each loop draws a practice target (◇) from the prior, picks the neighbour with the highest UCT value, runs a random rollout from it until the rollout finds the practice target, and adds the reward 1/τ to every cell the rollout passed. Pause and press ↑ to step a single loop.');
+  }
 }
 
 // ----------------------------------------------------------- canvas input
@@ -849,6 +859,9 @@ async function boot() {
     onError: (err) => {
       page.trapped = err instanceof WebAssembly.RuntimeError;
       showMessage(describeError(err));
+      setText('state-badge', 'error');
+      setText('play', 'Restart');
+      for (let i = 0; i < 2; i++) drawNotice($(`view-${i}`), 'Stopped: see the message above. Restart to try again.');
     },
   });
   page.controller.setSpeed(config.speed);

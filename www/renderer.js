@@ -392,6 +392,19 @@ export class Renderer {
   }
 }
 
+/** Dims the view and writes a short notice over it (e.g. after an engine error). */
+export function drawNotice(canvas, text) {
+  const ctx = canvas.getContext('2d');
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
+  ctx.fillStyle = 'rgba(11,14,17,0.72)';
+  ctx.fillRect(0, 0, canvas.width, canvas.height);
+  ctx.fillStyle = '#ff8b8b';
+  ctx.font = `600 ${Math.max(14, Math.round(canvas.width / 28))}px system-ui, sans-serif`;
+  ctx.textAlign = 'center';
+  ctx.textBaseline = 'middle';
+  ctx.fillText(text, canvas.width / 2, canvas.height / 2, canvas.width * 0.9);
+}
+
 function arrow(ctx, x0, y0, x1, y1, head) {
   const ang = Math.atan2(y1 - y0, x1 - x0);
   ctx.beginPath();

@@ -1,0 +1,381 @@
+// End-to-end tests of the web page (index.html + www/ + the wasm engine) in
+// Debian's Chromium through playwright-core, using the shared harness.
+// Needs `make build` first (www/pkg, www/vendor).
+//
+// Every test fails on console errors, failed requests and requests leaving
+// the origin, except where a test provokes an error on purpose.
+import assert from 'node:assert/strict';
+import { existsSync } from 'node:fs';
+import { copyFile, mkdir, readFile } from 'node:fs/promises';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { ROOT, SHOT_DIR, canvasIsBlank, describeProblems, launchBrowser, openPage, screenshot, startServer } from './harness.mjs';
+
+let server;
+let browser;
+
+before(async () => {
+  assert.ok(existsSync(path.join(ROOT, 'www', 'pkg', 'torus_search.js')), 'www/pkg is missing: run `make build` first');
+  server = await startServer(ROOT);
+  browser = await launchBrowser({ viewport: { width: 1280, height: 900 } });
+});
+
+after(async () => {
+  await browser?.close();
+  await server?.close();
+});
+
+/** Opens a page at `query` and runs fn; closes it afterwards. */
+async function withApp(query, fn, { allowErrors = false, viewport } = {}) {
+  const { page, report } = await openPage(browser.context, `${server.url}${query}`);
+  try {
+    if (viewport) await page.setViewportSize(viewport);
+    await page.waitForFunction(() => window.torusPage?.controller, null, { timeout: 30_000 });
+    await fn(page, report);
+    if (!allowErrors) assert.equal(describeProblems(report), '', 'the page reported problems');
+    else assert.deepEqual(report.offOrigin, [], 'requests left the origin');
+  } finally {
+    await page.close();
+  }
+}
+
+const state = (page) => page.evaluate(() => document.body.dataset.state);
+const text = (page, sel) => page.locator(sel).textContent();
+
+/** Waits (briefly) until `sel` shows `want`: panels update on the next animation frame. */
+async function expectText(page, sel, want) {
+  try {
+    await page.waitForFunction(([q, w]) => document.querySelector(q)?.textContent === w, [sel, want], { timeout: 5_000, polling: 50 });
+  } catch {
+    assert.equal(await text(page, sel), want, sel);
+  }
+}
+const mainPath = (page) => page.evaluate(() => window.torusPage.controller.runs[0].path());
+
+async function waitState(page, states, timeout = 90_000) {
+  const want = Array.isArray(states) ? states : [states];
+  await page.waitForFunction((w) => w.includes(document.body.dataset.state), want, { timeout, polling: 100 });
+  return state(page);
+}
+
+async function runToEnd(page) {
+  await page.evaluate(() => {
+    window.torusPage.controller.setSpeed('max');
+    window.torusPage.controller.play();
+  });
+  return waitState(page, ['found', 'capped']);
+}
+
+/** A hash of the main canvas's pixels. */
+function canvasHash(page, id = 'view-0') {
+  return page.evaluate((cid) => {
+    const c = document.getElementById(cid);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let h = 2166136261;
+    for (let i = 0; i < d.length; i += 7) h = Math.imul(h ^ d[i], 16777619);
+    return h >>> 0;
+  }, id);
+}
+
+test('the default demo autoplays, draws and reaches found with no console errors', { timeout: 180_000 }, async () => {
+  await withApp('', async (page) => {
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 3, null, { timeout: 60_000 });
+    assert.equal(await state(page), 'running');
+    assert.equal(await canvasIsBlank(page, '#view-0'), false);
+    const cfg = await page.evaluate(() => window.torusPage.controller.runs[0].core);
+    assert.equal(cfg.n, 40);
+    assert.deepEqual(cfg.prior, { kind: 'gaussian', sigma: 5 });
+    assert.equal(cfg.searcher, 'mcts');
+    assert.equal(cfg.variant, 'cells');
+    assert.equal(cfg.rollout, 'rw');
+    assert.equal(cfg.loops, 100);
+    await screenshot(page, 'default-demo');
+    assert.equal(await runToEnd(page), 'found');
+    const steps = Number((await text(page, '#steps')).replace(/,/g, ''));
+    const optimal = Number(await text(page, '#optimal'));
+    assert.ok(steps >= optimal && optimal > 0);
+    assert.equal(await text(page, '#ratio'), (steps / optimal).toFixed(2));
+    assert.match(await text(page, '#board-0 .banner'), new RegExp(`Found in ${steps} steps \\(optimal ${optimal}, ratio`));
+    for (const id of ['#loops-per-s', '#fps']) assert.match(await text(page, id), /\d/);
+    await screenshot(page, 'default-demo-found');
+  });
+});
+
+test('a URL round-trip reproduces the same path', { timeout: 180_000 }, async () => {
+  const query = '?n=24&sigma=3&loops=30&seed=4242&rv=1&start=3,20&belief=posterior&autoplay=1';
+  let first;
+  let search;
+  await withApp(query, async (page) => {
+    await runToEnd(page);
+    first = await mainPath(page);
+    search = await page.evaluate(() => location.search);
+  });
+  assert.ok(first.length > 1);
+  await withApp(search, async (page) => {
+    await runToEnd(page);
+    assert.deepEqual(await mainPath(page), first);
+  });
+});
+
+test('step loop and step move, by button and keyboard', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0&n=15&loops=20&seed=5', async (page) => {
+    assert.equal(await state(page), 'idle');
+    await page.click('#step-loop');
+    assert.equal(await state(page), 'paused');
+    await expectText(page, '#decision-loops', '1 / 20');
+    await expectText(page, '#rollouts', '1 / 1');
+    await page.locator('body').press('ArrowUp');
+    await expectText(page, '#decision-loops', '2 / 20');
+    await expectText(page, '#steps', '0');
+    await page.click('#step-move');
+    await expectText(page, '#steps', '1');
+    await expectText(page, '#rollouts', '20 / 20');
+    await page.locator('body').press('ArrowRight');
+    await expectText(page, '#steps', '2');
+    assert.equal((await mainPath(page)).length, 3);
+    await page.locator('body').press(' ');
+    assert.equal(await state(page), 'running');
+    await page.locator('body').press(' ');
+    assert.equal(await state(page), 'paused');
+    await page.locator('body').press('r');
+    await expectText(page, '#steps', '0');
+  });
+});
+
+test('every control changes the run', { timeout: 300_000 }, async () => {
+  await withApp('?autoplay=0&n=15&loops=20&seed=5&sigma=3', async (page) => {
+    const fingerprint = async () => {
+      await page.evaluate(() => {
+        const c = window.torusPage.controller;
+        for (let i = 0; i < 6 && c.isLive(); i++) c.stepMove();
+      });
+      return page.evaluate(() => ({
+        core: window.torusPage.controller.runs.map((r) => ({ ...r.core, seed: String(r.h.seed()) })),
+        path: window.torusPage.controller.runs[0].path(),
+        search: location.search,
+        speed: window.torusPage.controller.speed,
+      }));
+    };
+    const base = await fingerprint();
+    const restartBase = async () => {
+      await page.evaluate(() => window.torusPage.controller.reset());
+    };
+    // [control, how to set it, URL param, does the path have to change?]
+    const cases = [
+      ['#n', (p) => p.fill('#n', '17'), 'n=17', true],
+      ['#prior', (p) => p.selectOption('#prior', 'uniform'), 'prior=uniform', true],
+      ['#sigma', (p) => p.locator('#sigma').fill('6'), 'sigma=6', true],
+      ['#rv', (p) => p.fill('#rv', '0'), 'rv=0', false],
+      ['#start', (p) => p.fill('#start', '8,8'), 'start=8%2C8', true],
+      ['#searcher', (p) => p.selectOption('#searcher', 'nsarw'), 'searcher=nsarw', true],
+      ['#variant', (p) => p.selectOption('#variant', 'tree'), 'variant=tree', false],
+      ['#rollout', (p) => p.selectOption('#rollout', 'greedy'), 'rollout=greedy', false],
+      ['#belief', (p) => p.selectOption('#belief', 'posterior'), 'belief=posterior', false],
+      ['#loops', (p) => p.fill('#loops', '7'), 'loops=7', false],
+      ['#budget', (p) => p.selectOption('#budget', 'ms'), 'ms=20', false],
+      ['#c', (p) => p.fill('#c', '0.5'), 'c=0.5', false],
+      ['#mu', async (p) => {
+        await p.selectOption('#rollout', 'levy');
+        await p.locator('#rollout').dispatchEvent('change');
+        await p.fill('#mu', '2.5');
+      }, 'mu=2.5', false],
+      ['#final', (p) => p.selectOption('#final', 'uct'), 'final=uct', false],
+      ['#seed', (p) => p.fill('#seed', '6'), 'seed=6', false],
+      ['#race', (p) => p.selectOption('#race', 'rw'), 'race=rw', false],
+    ];
+    const changedPaths = [];
+    for (const [sel, set, param, mustChangePath] of cases) {
+      await set(page);
+      await page.locator(sel).dispatchEvent('change');
+      const fp = await fingerprint();
+      assert.ok(fp.search.includes(param), `${sel}: URL ${fp.search} lacks ${param}`);
+      assert.notDeepEqual(fp.core, base.core, `${sel}: the engine config did not change`);
+      if (mustChangePath) assert.notDeepEqual(fp.path, base.path, `${sel}: the path did not change`);
+      if (JSON.stringify(fp.path) !== JSON.stringify(base.path)) changedPaths.push(sel);
+      // Back to the base URL for the next control.
+      await page.goto(`${server.url}?autoplay=0&n=15&loops=20&seed=5&sigma=3`);
+      await page.waitForFunction(() => window.torusPage?.controller);
+      await restartBase();
+    }
+    // Most controls change the first moves; all change the engine config.
+    assert.ok(changedPaths.length >= 8, `only ${changedPaths.join(' ')} changed the path`);
+    // New seed changes the seed and the run.
+    await page.click('#new-seed');
+    const fp = await fingerprint();
+    assert.doesNotMatch(fp.search, /seed=5(&|$)/);
+    // Speed changes the controller's work per frame and the URL.
+    await page.locator('#speed').fill('13');
+    await page.locator('#speed').dispatchEvent('input');
+    assert.equal(await page.evaluate(() => window.torusPage.controller.speed), 'max');
+    assert.match(await page.evaluate(() => location.search), /speed=max/);
+  });
+});
+
+test('layer toggles change the drawing', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0&n=20&loops=30&seed=3', async (page) => {
+    await page.click('#step-move');
+    await page.click('#step-move');
+    for (const id of ['layer-prior', 'layer-visits', 'layer-path', 'layer-grid', 'reveal', 'tiling', 'layer-searched', 'layer-posterior', 'layer-arrows']) {
+      const before = await canvasHash(page);
+      await page.click(`#${id}`);
+      await page.waitForTimeout(100);
+      assert.notEqual(await canvasHash(page), before, `#${id} did not change the canvas`);
+    }
+  });
+});
+
+test('export JSON then import replays the episode exactly', { timeout: 180_000 }, async () => {
+  let file;
+  let exported;
+  await withApp('?n=20&sigma=4&loops=25&seed=77&start=2,18&belief=posterior', async (page) => {
+    await runToEnd(page);
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#export-json')]);
+    await mkdir(SHOT_DIR, { recursive: true });
+    file = path.join(SHOT_DIR, 'exported-episode.json');
+    await download.saveAs(file);
+    exported = JSON.parse(await readFile(file, 'utf8'));
+    assert.equal(exported.format, 'torus-search-episode');
+    assert.deepEqual(exported.episode.path, await mainPath(page));
+    const [png] = await Promise.all([page.waitForEvent('download'), page.click('#export-png')]);
+    assert.match(png.suggestedFilename(), /\.png$/);
+  });
+  await withApp('?autoplay=0&n=33&seed=1', async (page) => {
+    await page.setInputFiles('#import-json', file);
+    await page.waitForFunction(() => document.body.dataset.replay, null, { timeout: 90_000 });
+    assert.equal(await page.evaluate(() => document.body.dataset.replay), 'match');
+    assert.match(await text(page, '#message'), /Replayed exactly/);
+    assert.deepEqual(await mainPath(page), exported.episode.path);
+    assert.match(await page.evaluate(() => location.search), /seed=77/);
+  });
+});
+
+test('bad URL values show a message naming the parameter, and the page still runs', { timeout: 120_000 }, async () => {
+  await withApp('?n=abc&sigma=-1&rv=x&start=99,99&searcher=foo&loops=0&c=nan&mu=5&final=z&seed=-3&speed=fast&autoplay=maybe', async (page) => {
+    const msg = await text(page, '#message');
+    for (const key of ['n', 'sigma', 'rv', 'start', 'searcher', 'loops', 'c', 'mu', 'final', 'seed', 'speed', 'autoplay']) {
+      assert.match(msg, new RegExp(`Invalid ${key}=`), `no message for ${key}`);
+    }
+    assert.match(msg, /allowed integer 3–1024/);
+    assert.equal(await page.locator('#message').isVisible(), true);
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 1, null, { timeout: 60_000 });
+    assert.equal(await state(page), 'running');
+    assert.equal(await page.evaluate(() => window.torusPage.controller.runs[0].core.n), 40);
+  });
+});
+
+test('script and javascript: payloads in any parameter are not executed', { timeout: 180_000 }, async () => {
+  const payloads = [
+    '<script>window.__pwned=1</script>',
+    'javascript:window.__pwned=1',
+    '"><img src=x onerror="window.__pwned=1">',
+  ];
+  const keys = ['n', 'prior', 'sigma', 'rv', 'start', 'searcher', 'variant', 'rollout', 'belief', 'loops', 'ms', 'c', 'mu', 'final', 'seed', 'speed', 'autoplay', 'race', 'paint', '<b>x</b>'];
+  for (const p of payloads) {
+    const q = new URLSearchParams(keys.map((k) => [k, p])).toString();
+    await withApp(`?${q}`, async (page, report) => {
+      await page.waitForTimeout(500);
+      assert.equal(await page.evaluate(() => window.__pwned), undefined);
+      assert.equal(await page.locator('#message img, #message script, #message b').count(), 0);
+      const msg = await text(page, '#message');
+      assert.ok(msg.includes(p.slice(0, 20)), 'the payload is shown as text');
+      assert.notEqual(await state(page), 'error');
+      assert.deepEqual(report.offOrigin, []);
+      assert.deepEqual(report.failedRequests, []);
+    });
+  }
+});
+
+test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, async () => {
+  await withApp('?race=levy&speed=max', async (page, report) => {
+    await page.waitForTimeout(2000);
+    assert.deepEqual(report.offOrigin, []);
+    const csp = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute('content');
+    assert.equal(csp, "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'");
+    assert.equal(await page.locator('script:not([src])').count(), 0, 'no inline scripts');
+    assert.equal(await page.locator('[onclick], [onload], [onerror], [onchange], [oninput]').count(), 0, 'no inline handlers');
+    const origins = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).origin));
+    for (const o of origins) assert.equal(o, server.origin);
+  });
+});
+
+test('a wasm panic shows a readable message and sets state error', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0&n=12', async (page, report) => {
+    await page.evaluate(() => {
+      const run = window.torusPage.controller.runs[0];
+      run.stepLoops = () => window.torusPage.wasm.panicForTest('deliberate test panic');
+      window.torusPage.controller.play();
+    });
+    await waitState(page, 'error', 30_000);
+    assert.match(await text(page, '#message'), /wasm panic.*panicForTest: deliberate test panic/);
+    assert.ok(report.consoleErrors.some((e) => e.includes('deliberate test panic')), 'the panic hook logs it');
+    assert.equal(await canvasIsBlank(page, '#view-0'), false);
+  }, { allowErrors: true });
+});
+
+test('race mode: same target and seed, side by side, with a scoreboard', { timeout: 180_000 }, async () => {
+  await withApp('?race=rw&n=30&sigma=4&seed=11&loops=60&belief=posterior', async (page) => {
+    const targets = await page.evaluate(() => window.torusPage.controller.runs.map((r) => r.targetCell));
+    assert.equal(targets.length, 2);
+    assert.equal(targets[0], targets[1]);
+    assert.equal(await page.locator('#board-1').isVisible(), true);
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 12, null, { timeout: 60_000 });
+    await screenshot(page, 'race-mode');
+    await runToEnd(page);
+    await page.waitForFunction(() => window.torusPage.controller.runs.every((r) => r.status() !== 'running'), null, { timeout: 90_000 });
+    await page.evaluate(() => window.torusPage.controller.requestDraw());
+    await page.waitForTimeout(200);
+    assert.equal(await page.locator('#score-rows tr').count(), 2);
+    assert.ok((await page.locator('#score-rows tr.winner').count()) >= 1);
+  });
+});
+
+test('teaching view, clicking the grid sets the start, painting a prior', { timeout: 180_000 }, async () => {
+  await withApp('?autoplay=0', async (page) => {
+    await page.click('#teaching');
+    assert.match(await page.evaluate(() => location.search), /n=11/);
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
+    await page.click('#play');
+    await page.click('#step-loop');
+    await screenshot(page, 'teaching-view');
+    // Click the cell in the middle of the grid: start becomes (6,6).
+    const box = await page.locator('#view-0').boundingBox();
+    await page.mouse.click(box.x + box.width * (5.5 / 11), box.y + box.height * (5.5 / 11));
+    assert.equal(await page.inputValue('#start'), '6,6');
+    assert.match(await page.evaluate(() => location.search), /start=6%2C6/);
+    // Paint a prior.
+    await page.selectOption('#prior', 'paint');
+    await page.mouse.move(box.x + box.width * 0.2, box.y + box.height * 0.2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.25, { steps: 5 });
+    await page.mouse.up();
+    const search = await page.evaluate(() => location.search);
+    assert.match(search, /prior=paint/);
+    assert.match(search, /paint=[A-Za-z0-9_-]+/);
+    const prior = await page.evaluate(() => window.torusPage.controller.runs[0].core.prior.kind);
+    assert.equal(prior, 'weights');
+  });
+});
+
+test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { timeout: 120_000 }, async () => {
+  await withApp('', async (page) => {
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
+    const { scroll, width, canvasW } = await page.evaluate(() => ({
+      scroll: document.documentElement.scrollWidth,
+      width: window.innerWidth,
+      canvasW: document.getElementById('view-0').getBoundingClientRect().width,
+    }));
+    assert.ok(scroll <= width, `page scrolls sideways: ${scroll} > ${width}`);
+    assert.ok(canvasW >= width * 0.9, 'the lattice uses the screen width');
+    const h = await page.locator('#play').boundingBox();
+    assert.ok(h.height >= 32, 'buttons are big enough to tap');
+    await screenshot(page, 'phone');
+  }, { viewport: { width: 390, height: 844 } });
+});
+
+test('copy the best screenshots to docs/', { timeout: 30_000 }, async () => {
+  await mkdir(path.join(ROOT, 'docs'), { recursive: true });
+  for (const name of ['default-demo', 'teaching-view', 'race-mode']) {
+    const src = path.join(SHOT_DIR, `${name}.png`);
+    if (existsSync(src) && process.env.UPDATE_DOCS_SCREENSHOTS) await copyFile(src, path.join(ROOT, 'docs', `${name}.png`));
+  }
+});
