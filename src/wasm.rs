@@ -95,6 +95,21 @@ pub fn colorize_values(
 }
 
 fn parse_config(config: JsValue) -> Result<Config, JsError> {
+    // serde-wasm-bindgen reads only the fields it knows, so `deny_unknown_fields`
+    // never fires for a JS object: reject unknown keys (typos) here instead.
+    if let Some(obj) = config.dyn_ref::<js_sys::Object>() {
+        let known = js_sys::Object::keys(&to_js(&Config::default())?.into());
+        for key in js_sys::Object::keys(obj).iter() {
+            if !known.includes(&key, 0) {
+                let names: Vec<String> = known.iter().filter_map(|k| k.as_string()).collect();
+                return Err(JsError::new(&format!(
+                    "config: unknown field {:?}, expected one of {}",
+                    key.as_string().unwrap_or_default(),
+                    names.join(", ")
+                )));
+            }
+        }
+    }
     serde_wasm_bindgen::from_value(config).map_err(|e| JsError::new(&format!("config: {e}")))
 }
 

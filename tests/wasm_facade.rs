@@ -6,7 +6,7 @@
 
 use torus_search::config::Config;
 use torus_search::episode::Episode as CoreEpisode;
-use torus_search::wasm::{self as facade, Episode};
+use torus_search::wasm::{self as facade, EpisodeHandle as Episode};
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::*;
 
