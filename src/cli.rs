@@ -173,6 +173,17 @@ struct RunArgs {
 
 struct UsageError(String);
 
+/// `println!` that ends the process quietly when stdout is closed (as in
+/// `torus-search bench | head -1`) instead of panicking.
+macro_rules! out {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        if writeln!(std::io::stdout(), $($t)*).is_err() {
+            std::process::exit(0);
+        }
+    }};
+}
+
 fn flag(field: &str) -> String {
     match field {
         "ms" => "--decision-ms".into(),
@@ -366,7 +377,7 @@ fn run(a: &RunArgs) -> Result<(), UsageError> {
             "seed": a.seed,
             "config": cfg,
         });
-        println!("{v}");
+        out!("{v}");
     } else {
         print_table(&cfg, a.seed, &s, seconds, threads);
     }
@@ -398,31 +409,31 @@ fn print_table(cfg: &Config, seed: u64, s: &Summary, seconds: f64, threads: usiz
     };
     let ci =
         |m: &torus_search::stats::MeanCi| format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi);
-    println!(
+    out!(
         "torus-search: N={} r_v={} prior={prior} start={},{} seed={seed}",
         cfg.n, cfg.rv, cfg.start[0], cfg.start[1]
     );
-    println!("searcher: {who}");
-    println!("{:<28}{}", "trials", s.trials);
-    println!("{:<28}{}", "mean steps   [95% CI]", ci(&s.steps));
-    println!("{:<28}{}", "mean optimal [95% CI]", ci(&s.optimal));
-    println!("{:<28}{}", "ASOO = mean(steps-opt)", ci(&s.asoo));
-    println!("{:<28}{}", "mean steps/opt", ci(&s.ratio));
-    println!(
+    out!("searcher: {who}");
+    out!("{:<28}{}", "trials", s.trials);
+    out!("{:<28}{}", "mean steps   [95% CI]", ci(&s.steps));
+    out!("{:<28}{}", "mean optimal [95% CI]", ci(&s.optimal));
+    out!("{:<28}{}", "ASOO = mean(steps-opt)", ci(&s.asoo));
+    out!("{:<28}{}", "mean steps/opt", ci(&s.ratio));
+    out!(
         "{:<28}{:>10.3}",
         "mean steps / mean opt", s.steps_over_mean_optimal
     );
-    println!(
+    out!(
         "{:<28}{:>10.1}   (q1 {:.1}, q3 {:.1})",
         "median steps", s.median_steps, s.q1_steps, s.q3_steps
     );
-    println!("{:<28}{}", "optimal = 0 (excluded)", s.zero_optimal);
-    println!("{:<28}{}", "capped episodes", s.capped);
-    println!(
+    out!("{:<28}{}", "optimal = 0 (excluded)", s.zero_optimal);
+    out!("{:<28}{}", "capped episodes", s.capped);
+    out!(
         "{:<28}{} ({} steps, {} truncated)",
         "rollouts", s.counters.rollouts, s.counters.rollout_steps, s.counters.truncated
     );
-    println!("{:<28}{:.3} s on {threads} threads", "time", seconds);
+    out!("{:<28}{:.3} s on {threads} threads", "time", seconds);
 }
 
 fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
@@ -446,7 +457,7 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
         let rate = done as f64 / t.elapsed().as_secs_f64();
         out.insert(key.into(), rate.into());
         if !json {
-            println!(
+            out!(
                 "{:<34}{:>14.3e}",
                 format!("{} rollout lattice steps/s", kind.name()),
                 rate
@@ -474,7 +485,7 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
             out.insert(format!("{tag}_loops_per_s"), lps.into());
             out.insert(format!("{tag}_episodes_per_s"), eps.into());
             if !json {
-                println!(
+                out!(
                     "{:<34}{:>14.1} loops/s {:>10.3} episodes/s",
                     format!("mcts {vname} N=40 L=100 sigma={sigma}"),
                     lps,
@@ -484,7 +495,7 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
         }
     }
     if json {
-        println!("{}", serde_json::Value::Object(out));
+        out!("{}", serde_json::Value::Object(out));
     }
     Ok(())
 }

@@ -91,8 +91,9 @@ impl std::error::Error for LatticeError {}
 #[derive(Clone, Debug)]
 pub struct Torus {
     n: u32,
-    /// `nbr[4 * cell + move]`: the hot loops index this instead of doing
-    /// modular arithmetic.
+    /// `nbr[4 * cell + move]` holds `4 * neighbour`: the hot loop indexes this
+    /// instead of doing modular arithmetic, and the premultiplied entry keeps
+    /// a shift off its dependency chain.
     nbr: Vec<u32>,
 }
 
@@ -113,7 +114,7 @@ impl Torus {
                     let (dx, dy) = m.delta();
                     let nx = (x as i64 + dx as i64).rem_euclid(n as i64) as u32;
                     let ny = (y as i64 + dy as i64).rem_euclid(n as i64) as u32;
-                    nbr.push(ny * n + nx);
+                    nbr.push(4 * (ny * n + nx));
                 }
             }
         }
@@ -132,7 +133,7 @@ impl Torus {
         (self.n * self.n) as usize
     }
 
-    /// The neighbour table, `4 * cell + move`.
+    /// The neighbour table: entry `4 * cell + move` is `4 * neighbour`.
     #[inline]
     pub fn neighbours(&self) -> &[u32] {
         &self.nbr
@@ -141,7 +142,7 @@ impl Torus {
     /// The cell reached from `cell` by `m`.
     #[inline]
     pub fn step(&self, cell: u32, m: Move) -> u32 {
-        self.nbr[(cell * 4 + m as u32) as usize]
+        self.nbr[(cell * 4 + m as u32) as usize] >> 2
     }
 
     /// The cell at 0-based `(x, y)`, wrapping any integers onto the torus.

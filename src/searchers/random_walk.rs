@@ -41,20 +41,22 @@ impl RandomWalk {
                 detected: true,
             };
         }
-        let mut pos = start as usize;
+        // `p` is 4 × the current cell: the next cell's table row is one
+        // load away, with no multiply on the dependency chain.
+        let mut p = 4 * start as usize;
         let mut steps = 0u32;
         while steps < cap {
             let chunk = (cap - steps).min(32);
             let mut b = rng::bits(rng);
             for i in 0..chunk {
-                // SAFETY: `pos` starts in range and every neighbour-table entry
-                // is a cell index < cells() = mask.len() bound checked above,
-                // and `4 * pos + 3 < nbr.len()`.
+                // SAFETY: `p / 4` starts in range and every table entry is
+                // 4 × a cell index < cells() ≤ mask.len() (asserted above), so
+                // `p + (b & 3) < 4 * cells() = nbr.len()` and `p >> 2 < mask.len()`.
                 unsafe {
-                    pos = *nbr.get_unchecked(4 * pos + (b & 3) as usize) as usize;
+                    p = *nbr.get_unchecked(p + (b & 3) as usize) as usize;
                     b >>= 2;
-                    visit.visit(pos as u32);
-                    if *mask.get_unchecked(pos) != 0 {
+                    visit.visit((p >> 2) as u32);
+                    if *mask.get_unchecked(p >> 2) != 0 {
                         return Outcome {
                             steps: steps + i + 1,
                             detected: true,
