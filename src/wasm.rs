@@ -12,6 +12,7 @@
 use crate::config::Config;
 use crate::episode::{Episode, Status};
 use crate::render::{summarize, Alpha, Colorizer, Palette, Scale, Summary};
+use crate::searchers::PolicyKind;
 use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
@@ -92,6 +93,38 @@ pub fn colorize_values(
         alpha(alpha_lo, alpha_hi),
     );
     Ok(out)
+}
+
+/// Benchmark workload (timed by the caller with `performance.now()`): rollouts
+/// of `policy` (rw, levy, nsarw, greedy) between random cells until at least
+/// `min_steps` lattice steps; returns the steps made.
+#[wasm_bindgen(js_name = benchRolloutSteps)]
+pub fn bench_rollout_steps(
+    policy: &str,
+    n: u32,
+    rv: f64,
+    mu: f64,
+    seed: u64,
+    min_steps: f64,
+) -> Result<f64, JsError> {
+    let kind = PolicyKind::parse(policy).ok_or_else(|| {
+        JsError::new(&format!(
+            "policy must be rw, levy, nsarw or greedy, got {policy:?}"
+        ))
+    })?;
+    crate::bench::rollout_steps(kind, n, rv, mu, seed, min_steps as u64)
+        .map(|s| s as f64)
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// Benchmark workload: `loops` MCTS loops of `config` in one call (no frame
+/// loop, no drawing); returns `[loops, real moves, episodes finished]`.
+#[wasm_bindgen(js_name = benchMctsLoops)]
+pub fn bench_mcts_loops(config: JsValue, seed: u64, loops: f64) -> Result<Vec<f64>, JsError> {
+    let cfg = parse_config(config)?;
+    let (l, m, e) = crate::bench::mcts_loops(&cfg, seed, loops as u64)
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(vec![l as f64, m as f64, e as f64])
 }
 
 fn parse_config(config: JsValue) -> Result<Config, JsError> {

@@ -216,3 +216,16 @@ fn walkers_and_time_budgets() {
     assert!(js_sys::Date::now() - before >= 1.0);
     assert!(t.rollouts_total() >= 1.0);
 }
+
+#[wasm_bindgen_test]
+fn benchmark_workloads() {
+    let steps = facade::bench_rollout_steps("rw", 40, 1.0, 2.0, 1, 10_000.0)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert!(steps >= 10_000.0);
+    assert!(facade::bench_rollout_steps("teleport", 40, 1.0, 2.0, 1, 10.0).is_err());
+    let r = facade::bench_mcts_loops(js(r#"{"n":20,"loops":10}"#), 1, 50.0)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert!(r[0] >= 50.0 && r[1] >= 4.0, "{r:?}");
+}

@@ -664,42 +664,45 @@ function fmtLegend(v, counts) {
 
 function updateLegend(snap) {
   const el = $('legend');
-  const key = snap.layers.map((l) => `${l.name}:${l.scale}:${l.max}`).join('|');
-  if (key === page.legendKey) return;
-  page.legendKey = key;
-  const frag = document.createDocumentFragment();
-  for (const l of snap.layers) {
-    const entry = document.createElement('div');
-    entry.className = 'entry';
-    const name = document.createElement('span');
-    name.textContent = l.binary ? l.label : `${l.label}${l.scale === 'log' ? ' (log)' : ''}`;
-    const bar = document.createElement('canvas');
-    drawColorbar(bar, lut(l.palette));
-    const ticks = document.createElement('div');
-    ticks.className = 'ticks';
-    const lo = document.createElement('span');
-    const hi = document.createElement('span');
-    if (l.binary) {
-      lo.textContent = 'no';
-      hi.textContent = 'within rᵥ of the path';
-    } else {
-      lo.textContent = l.scale === 'stretch' ? fmtLegend(l.min, true) : '0';
-      hi.textContent = `${fmtLegend(l.max, l.counts)}${l.counts ? '' : ' per cell'}`;
+  // Rebuild the DOM only when the set of layers changes; otherwise update the ticks.
+  const key = snap.layers.map((l) => `${l.name}:${l.scale}`).join('|');
+  if (key !== page.legendKey) {
+    page.legendKey = key;
+    const frag = document.createDocumentFragment();
+    for (const l of snap.layers) {
+      const entry = document.createElement('div');
+      entry.className = 'entry';
+      const name = document.createElement('span');
+      name.textContent = l.binary ? l.label : `${l.label}${l.scale === 'log' ? ' (log)' : ''}`;
+      const bar = document.createElement('canvas');
+      drawColorbar(bar, lut(l.palette));
+      const ticks = document.createElement('div');
+      ticks.className = 'ticks';
+      ticks.append(document.createElement('span'), document.createElement('span'));
+      entry.append(name, bar, ticks);
+      frag.append(entry);
     }
-    ticks.append(lo, hi);
-    entry.append(name, bar, ticks);
-    frag.append(entry);
+    const marks = document.createElement('div');
+    marks.className = 'marks';
+    for (const [cls, label] of [['m-searcher', 'searcher'], ['m-start', 'start'], ['m-target', 'target'], ['m-practice', 'practice target'], ['m-path', 'path'], ['m-rollout', 'rollout']]) {
+      const m = document.createElement('span');
+      m.className = cls;
+      m.textContent = label;
+      marks.append(m);
+    }
+    frag.append(marks);
+    el.replaceChildren(frag);
   }
-  const marks = document.createElement('div');
-  marks.className = 'marks';
-  for (const [cls, text] of [['m-searcher', 'searcher'], ['m-start', 'start'], ['m-target', 'target'], ['m-practice', 'practice target'], ['m-path', 'path'], ['m-rollout', 'rollout']]) {
-    const s = document.createElement('span');
-    s.className = cls;
-    s.textContent = text;
-    marks.append(s);
-  }
-  frag.append(marks);
-  el.replaceChildren(frag);
+  snap.layers.forEach((l, i) => {
+    const [lo, hi] = el.children[i].querySelector('.ticks').children;
+    if (l.binary) {
+      setText(lo, 'no');
+      setText(hi, 'within rᵥ of the path');
+    } else {
+      setText(lo, l.scale === 'stretch' ? fmtLegend(l.min, true) : '0');
+      setText(hi, `${fmtLegend(l.max, l.counts)}${l.counts ? '' : ' per cell'}`);
+    }
+  });
 }
 
 // --------------------------------------------------------- share / export

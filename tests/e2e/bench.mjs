@@ -1,0 +1,171 @@
+#!/usr/bin/env node
+// Browser benchmark (no timed assertions): prints one JSON object with
+//   fps_n256              frames/s at N=256 with the prior + visit-count
+//                         heatmaps and the path drawn while MCTS runs
+//   longest_task_ms_n256  the longest main-thread task meanwhile (PerformanceObserver 'longtask')
+//   page_loops_per_s_*    MCTS loops/s in the page (frame loop, drawing on)
+//   wasm_loops_per_s_*    MCTS loops in one wasm call (no frame loop), same configs
+//   wasm_rw_steps_per_s   RW rollout lattice steps/s in wasm (N=40, r_v=1)
+//   native_*              the same workloads natively, with --native (runs
+//                         `target/release/torus-search bench --json`)
+// Usage: node tests/e2e/bench.mjs [--native] [--seconds S]
+// Needs `make build` (www/pkg) first.
+import { execFileSync } from 'node:child_process';
+import { existsSync } from 'node:fs';
+import path from 'node:path';
+import { ROOT, launchBrowser, openPage, startServer } from './harness.mjs';
+
+const args = process.argv.slice(2);
+const seconds = Number(args[args.indexOf('--seconds') + 1]) || 5;
+const wantNative = args.includes('--native');
+
+// Counts animation frames and long tasks from before the page's own scripts run.
+const PROBE = () => {
+  window.__bench = { frames: 0, longest: 0, longTasks: 0 };
+  const tick = () => {
+    window.__bench.frames++;
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+  try {
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) {
+        window.__bench.longest = Math.max(window.__bench.longest, e.duration);
+        window.__bench.longTasks++;
+      }
+    }).observe({ type: 'longtask', buffered: true });
+  } catch {
+    window.__bench.longest = -1; // not supported
+  }
+};
+
+async function measurePage(context, url, { untick = [] } = {}) {
+  const { page } = await openPage(context, url);
+  try {
+    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
+    for (const id of untick) {
+      await page.evaluate((i) => {
+        const el = document.getElementById(i);
+        if (el.checked) el.click();
+      }, id);
+    }
+    await page.evaluate(() => {
+      const c = window.torusPage.controller;
+      c.setSpeed('max');
+      c.play();
+    });
+    await page.waitForTimeout(1000); // warm up
+    const sample = () => page.evaluate(() => {
+      const c = window.torusPage.controller;
+      return {
+        t: performance.now(),
+        frames: window.__bench.frames,
+        loops: c.runs.reduce((a, r) => a + r.loopsDone(), 0),
+        steps: c.runs.reduce((a, r) => a + r.rolloutSteps(), 0),
+        state: c.state,
+        longest: window.__bench.longest,
+        longTasks: window.__bench.longTasks,
+      };
+    });
+    await page.evaluate(() => {
+      window.__bench.longest = 0;
+      window.__bench.longTasks = 0;
+    });
+    const a = await sample();
+    // Sample until the window ends or the episode does (rates cover running time only).
+    let b = a;
+    while (b.t - a.t < seconds * 1000) {
+      await page.waitForTimeout(250);
+      const s = await sample();
+      if (s.state !== 'running') {
+        b.state = s.state;
+        break;
+      }
+      b = s;
+    }
+    if (b === a) throw new Error(`the run ended during warm-up (${url})`);
+    const dt = (b.t - a.t) / 1000;
+    return {
+      fps: +((b.frames - a.frames) / dt).toFixed(1),
+      loops_per_s: Math.round((b.loops - a.loops) / dt),
+      rollout_steps_per_s: Math.round((b.steps - a.steps) / dt),
+      longest_task_ms: b.longest,
+      long_tasks: b.longTasks,
+      state_at_end: b.state,
+    };
+  } finally {
+    await page.close();
+  }
+}
+
+async function measureWasm(context, url) {
+  const { page } = await openPage(context, url);
+  try {
+    await page.waitForFunction(() => window.torusPage?.wasm, null, { timeout: 60_000 });
+    return await page.evaluate(() => {
+      const w = window.torusPage.wasm;
+      window.torusPage.controller.pause();
+      const time = (fn) => {
+        fn(); // warm up
+        const t0 = performance.now();
+        const r = fn();
+        return [r, (performance.now() - t0) / 1000];
+      };
+      const [steps, ts] = time(() => w.benchRolloutSteps('rw', 40, 1, 2, 1n, 2e8));
+      const cfg = { n: 40, prior: { kind: 'gaussian', sigma: 5 }, loops: 100 };
+      const [loops, tl] = time(() => w.benchMctsLoops(cfg, 1n, 20000)[0]);
+      const cfg0 = { n: 40, prior: { kind: 'delta', cell: null }, loops: 100 };
+      const [loops0, tl0] = time(() => w.benchMctsLoops(cfg0, 1n, 20000)[0]);
+      const cfg100 = { n: 100, prior: { kind: 'gaussian', sigma: 15 }, loops: 100 };
+      const [loops100, tl100] = time(() => w.benchMctsLoops(cfg100, 1n, 5000)[0]);
+      return {
+        wasm_rw_steps_per_s: Math.round(steps / ts),
+        wasm_loops_per_s_n40_sigma5: Math.round(loops / tl),
+        wasm_loops_per_s_n40_sigma0: Math.round(loops0 / tl0),
+        wasm_loops_per_s_n100_sigma15: Math.round(loops100 / tl100),
+      };
+    });
+  } finally {
+    await page.close();
+  }
+}
+
+function native() {
+  const bin = path.join(ROOT, 'target', 'release', 'torus-search');
+  if (!existsSync(bin)) return { native_error: 'build it first: cargo build --release' };
+  try {
+    const out = JSON.parse(execFileSync(bin, ['bench', '--json'], { encoding: 'utf8', timeout: 600_000 }));
+    return { native: out };
+  } catch (err) {
+    return { native_error: String(err.message).split('\n')[0] };
+  }
+}
+
+const server = await startServer(ROOT);
+const browser = await launchBrowser({ viewport: { width: 1280, height: 900 } });
+const result = { seconds, chromium: null, url_n256: null };
+try {
+  await browser.context.addInitScript(PROBE);
+  result.chromium = browser.context.browser()?.version() ?? null;
+  // N=256: prior + visits heatmaps + path (the default layers), no rollout traces.
+  const q256 = '?n=256&sigma=40&loops=100&seed=1&belief=posterior';
+  result.url_n256 = q256;
+  const big = await measurePage(browser.context, `${server.url}${q256}`, { untick: ['layer-rollouts', 'layer-practice'] });
+  result.fps_n256 = big.fps;
+  result.longest_task_ms_n256 = big.longest_task_ms;
+  result.long_tasks_n256 = big.long_tasks;
+  result.page_loops_per_s_n256 = big.loops_per_s;
+  // A long episode at full speed, drawing on (traces off), for page vs wasm loops/s.
+  const mid = await measurePage(browser.context, `${server.url}?n=100&sigma=15&seed=1`, { untick: ['layer-rollouts', 'layer-practice'] });
+  result.fps_n100 = mid.fps;
+  result.page_loops_per_s_n100_sigma15 = mid.loops_per_s;
+  result.page_rollout_steps_per_s_n100 = mid.rollout_steps_per_s;
+  result.longest_task_ms_n100 = mid.longest_task_ms;
+  Object.assign(result, await measureWasm(browser.context, `${server.url}?autoplay=0`));
+  result.page_over_wasm_loops_n100 = +(result.page_loops_per_s_n100_sigma15 / result.wasm_loops_per_s_n100_sigma15).toFixed(3);
+} finally {
+  await browser.close();
+  await server.close();
+}
+if (wantNative) Object.assign(result, native());
+console.log(JSON.stringify(result, null, 2));
