@@ -109,7 +109,9 @@ pub struct Episode {
     torus: Torus,
     sensor: Sensor,
     prior: TargetPrior,
-    plan: TargetPrior,
+    /// The planning prior when it differs from `prior` (`known`); sharing
+    /// otherwise keeps an N = 1024 episode from holding two copies.
+    known_plan: Option<TargetPrior>,
     target: u32,
     start: u32,
     pos: u32,
@@ -161,12 +163,10 @@ impl Episode {
             .map_err(|e| ConfigError::new("prior", "", e.to_string()))?;
         let mut world = rng::stream(seed, 2 * index);
         let target = prior.sample(&mut world);
-        let plan = if cfg.known {
+        let known_plan = cfg.known.then(|| {
             TargetPrior::new(&torus, &PriorSpec::Delta { cell: Some(target) })
                 .expect("target is on the lattice")
-        } else {
-            prior.clone()
-        };
+        });
         let cells = torus.cells();
         let policy_kind = match cfg.searcher {
             SearcherKind::Mcts => cfg.rollout,
@@ -195,7 +195,7 @@ impl Episode {
             seed,
             sensor,
             prior,
-            plan,
+            known_plan,
             target,
             start,
             pos: start,
@@ -237,7 +237,7 @@ impl Episode {
 
     fn mark_searched(&mut self, cell: u32) {
         let (x, y) = self.torus.xy(cell);
-        let mass = self.plan.mass();
+        let mass = self.known_plan.as_ref().unwrap_or(&self.prior).mass();
         for &(dx, dy) in self.sensor.offsets() {
             let c = self.torus.cell(x as i64 + dx as i64, y as i64 + dy as i64) as usize;
             if self.searched[c] == 0 {
@@ -251,12 +251,20 @@ impl Episode {
     /// A practice target from the belief.
     fn practice_target(&mut self) -> u32 {
         if self.cfg.belief == Belief::Prior {
-            return self.plan.sample(&mut self.rng);
+            return self
+                .known_plan
+                .as_ref()
+                .unwrap_or(&self.prior)
+                .sample(&mut self.rng);
         }
         // Rejection from the prior is exact for the posterior and cheap while
         // much mass remains; past a few misses fall back to an alias table.
         for _ in 0..8 {
-            let c = self.plan.sample(&mut self.rng);
+            let c = self
+                .known_plan
+                .as_ref()
+                .unwrap_or(&self.prior)
+                .sample(&mut self.rng);
             if self.searched[c as usize] == 0 {
                 return c;
             }
@@ -272,7 +280,7 @@ impl Episode {
     }
 
     fn refresh_posterior(&mut self) {
-        let mass = self.plan.mass();
+        let mass = self.known_plan.as_ref().unwrap_or(&self.prior).mass();
         self.posterior.clear();
         self.posterior.extend(
             mass.iter()
@@ -479,7 +487,7 @@ impl Episode {
 
     /// The planning prior (differs from the prior with `known`).
     pub fn plan_mass(&self) -> &[f64] {
-        self.plan.mass()
+        self.known_plan.as_ref().unwrap_or(&self.prior).mass()
     }
 
     /// The posterior: the planning prior with searched cells zeroed, renormalised.

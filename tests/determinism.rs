@@ -1,0 +1,141 @@
+//! A run is a pure function of (config, seed) on every platform: these
+//! fingerprints are pinned and checked natively and in wasm.
+
+use torus_search::batch::{fingerprint, run_trials};
+use torus_search::config::{Belief, Config, SearcherKind};
+use torus_search::mcts::{FinalRule, Variant};
+use torus_search::prior::PriorSpec;
+use torus_search::searchers::PolicyKind;
+use wasm_bindgen_test::wasm_bindgen_test;
+
+fn small() -> Config {
+    Config {
+        n: 12,
+        prior: PriorSpec::Gaussian { sigma: 2.5 },
+        loops: 16,
+        rollout_cap: 400,
+        step_cap: 400,
+        ..Config::default()
+    }
+}
+
+fn cases() -> Vec<(&'static str, Config)> {
+    vec![
+        ("cells rw", small()),
+        (
+            "tree rw",
+            Config {
+                variant: Variant::Tree,
+                ..small()
+            },
+        ),
+        (
+            "cells levy",
+            Config {
+                rollout: PolicyKind::Levy,
+                mu: 1.7,
+                ..small()
+            },
+        ),
+        (
+            "cells nsarw posterior",
+            Config {
+                rollout: PolicyKind::Nsarw,
+                belief: Belief::Posterior,
+                ..small()
+            },
+        ),
+        (
+            "tree greedy mean",
+            Config {
+                variant: Variant::Tree,
+                rollout: PolicyKind::Greedy,
+                final_rule: FinalRule::Mean,
+                ..small()
+            },
+        ),
+        (
+            "cells uct reset",
+            Config {
+                final_rule: FinalRule::Uct,
+                reset_each_move: true,
+                ..small()
+            },
+        ),
+        (
+            "levy walker",
+            Config {
+                searcher: SearcherKind::Levy,
+                prior: PriorSpec::Uniform,
+                ..small()
+            },
+        ),
+        (
+            "nsarw walker",
+            Config {
+                searcher: SearcherKind::Nsarw,
+                prior: PriorSpec::Uniform,
+                ..small()
+            },
+        ),
+        (
+            "rw walker",
+            Config {
+                searcher: SearcherKind::Rw,
+                prior: PriorSpec::Uniform,
+                rv: 0.0,
+                ..small()
+            },
+        ),
+    ]
+}
+
+/// The pinned fingerprints, in `cases()` order (seed 2026, 4 trials each).
+const PINNED: [u64; 9] = [
+    0xffcde01788cd3854,
+    0x2ffb758103ec3b6d,
+    0x7282bdec7ebf2054,
+    0xf22752ae40beaa2d,
+    0x4292b8697b437811,
+    0x30e670e25ce766d9,
+    0x504ae0d31199c260,
+    0x36e45bc50047197e,
+    0x6388de00944dcf87,
+];
+
+#[wasm_bindgen_test(unsupported = test)]
+fn fingerprints_are_pinned() {
+    let got: Vec<u64> = cases()
+        .iter()
+        .map(|(_, c)| fingerprint(c, 2026, 4).unwrap())
+        .collect();
+    println!("{got:#018x?}");
+    for ((name, _), (g, want)) in cases().iter().zip(got.iter().zip(PINNED)) {
+        assert_eq!(
+            *g, want,
+            "{name}: fingerprint {g:#018x} differs from the pinned {want:#018x}"
+        );
+    }
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn same_seed_replays_and_other_seeds_differ() {
+    let c = small();
+    assert_eq!(
+        fingerprint(&c, 5, 3).unwrap(),
+        fingerprint(&c, 5, 3).unwrap()
+    );
+    assert_ne!(
+        fingerprint(&c, 5, 3).unwrap(),
+        fingerprint(&c, 6, 3).unwrap()
+    );
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn trials_do_not_depend_on_how_a_batch_is_split() {
+    let c = small();
+    let whole = run_trials(&c, 9, 0, 6).unwrap();
+    let mut parts = run_trials(&c, 9, 0, 2).unwrap();
+    parts.extend(run_trials(&c, 9, 2, 4).unwrap());
+    assert_eq!(whole, parts);
+}
