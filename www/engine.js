@@ -74,6 +74,8 @@ export const RACE = {
 
 /** One episode in the page. */
 export class Run {
+  static count = 0;
+
   constructor(core, seed, label) {
     this.h = new wasm.Episode(core, BigInt(seed));
     this.core = core;
@@ -85,7 +87,7 @@ export class Run {
     this.optimalSteps = this.h.optimal();
     this.walkerMoves = 0;
     this.pacer = null; // () => max steps allowed now (race pacing), or null
-    this.timeline = [[0, 0]]; // [seconds of running time, steps]
+    this.serial = ++Run.count; // distinguishes cached layer pixels across runs
   }
 
   free() {

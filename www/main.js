@@ -441,15 +441,19 @@ function snapshotRun(run, ri) {
   const rollouts = run.h.rolloutsTotal();
   const fresh = [];
   const reuse = [];
+  // On big lattices the per-loop layers are recoloured at most ~8 times a
+  // second (a million cells each); the frame keeps its budget for the search.
+  const slow = run.n * run.n > 1 << 17 ? Math.floor(performance.now() / 120) : rollouts;
   for (const s of specs) {
-    const key = `${s.palette}|${s.scale}|${s.dep === 'static' ? '' : s.dep === 'steps' ? steps : `${steps}:${rollouts}`}`;
+    const key = `${s.palette}|${s.scale}|${s.dep === 'static' ? '' : s.dep === 'steps' ? steps : `${steps}:${slow}`}`;
     const hit = cache.get(s.name);
     if (hit && hit.key === key) reuse.push({ ...hit.layer });
     else fresh.push({ ...s, key });
   }
   const traces = $('layer-rollouts').checked || $('layer-practice').checked;
   const snap = run.snapshot(fresh, { traces: traces && run.isMcts });
-  for (const l of snap.layers) cache.set(l.name, { key: l.key, layer: l });
+  for (const l of snap.layers) cache.set(l.name, { key: l.key, layer: { ...l, key: `${run.serial}:${l.name}:${l.key}` } });
+  snap.layers = snap.layers.map((l) => cache.get(l.name).layer);
   // Keep the bottom-to-top order.
   const byName = new Map([...reuse, ...snap.layers].map((l) => [l.name, l]));
   snap.layers = specs.map((s) => byName.get(s.name)).filter(Boolean);
@@ -474,6 +478,7 @@ function draw(info) {
       const rgba = new Uint8ClampedArray(page.painting.buffer, page.painting.byteOffset, page.painting.length);
       if (idx >= 0) layers[idx] = { rgba };
       else layers.unshift({ rgba });
+      // A preview changes every stroke: never reuse an upload for it.
     }
     const found = snap.status === 'found';
     page.renderers[i].draw({

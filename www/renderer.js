@@ -129,12 +129,26 @@ export class Renderer {
   constructor(canvas) {
     this.canvas = canvas;
     this.ctx = canvas.getContext('2d', { alpha: false });
-    this.offscreen = document.createElement('canvas');
-    this.offCtx = this.offscreen.getContext('2d');
+    this.offscreens = []; // one N×N canvas per layer slot
     this.pathCache = new PathCache();
     this.n = 0;
     this.tiling = false;
     this.layout();
+  }
+
+  /** The N×N offscreen canvas of layer slot `i`. */
+  layerCanvas(i, n) {
+    let off = this.offscreens[i];
+    if (!off) {
+      const canvas = document.createElement('canvas');
+      off = this.offscreens[i] = { canvas, ctx: canvas.getContext('2d'), key: undefined };
+    }
+    if (off.canvas.width !== n || off.canvas.height !== n) {
+      off.canvas.width = n;
+      off.canvas.height = n;
+      off.key = undefined;
+    }
+    return off;
   }
 
   /** Recomputes cell size from the canvas's pixel size. */
@@ -177,7 +191,7 @@ export class Renderer {
   /**
    * Draws one frame.
    * scene = {
-   *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n) }],
+   *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n), key }] (same key = same pixels),
    *   path: Uint32Array, pathLen, start, position, target (−1 = none), showTarget,
    *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
    *   decision: { visits: [4], chosen } | null, grid: bool, tiling: bool, found: bool
@@ -198,21 +212,22 @@ export class Renderer {
     ctx.fillStyle = COLORS.background;
     ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
 
-    // Heatmap layers: one putImageData each, scaled by drawImage.
-    if (this.offscreen.width !== n) {
-      this.offscreen.width = n;
-      this.offscreen.height = n;
-    }
+    // Heatmap layers: one putImageData each (skipped when a layer's `key`
+    // says its pixels did not change), scaled by drawImage.
     ctx.imageSmoothingEnabled = false;
-    for (const layer of scene.layers) {
-      if (!layer || !layer.rgba || layer.rgba.length !== 4 * n * n) continue;
-      this.offCtx.putImageData(new ImageData(layer.rgba, n, n), 0, 0);
+    scene.layers.forEach((layer, li) => {
+      if (!layer || !layer.rgba || layer.rgba.length !== 4 * n * n) return;
+      const off = this.layerCanvas(li, n);
+      if (layer.key === undefined || off.key !== layer.key) {
+        off.ctx.putImageData(new ImageData(layer.rgba, n, n), 0, 0);
+        off.key = layer.key;
+      }
       for (const ty of tiles) {
         for (const tx of tiles) {
-          ctx.drawImage(this.offscreen, 0, 0, n, n, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
+          ctx.drawImage(off.canvas, 0, 0, n, n, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
         }
       }
-    }
+    });
 
     // Everything in cell units from here on, translated per tile.
     const lw = (px) => px / cs; // a width in device pixels, expressed in cell units
