@@ -1,1 +1,77 @@
-fn main() {}
+//! Criterion benchmarks (stable Rust): rollout throughput per policy, MCTS
+//! loops and whole episodes at the paper's N = 40, L = 100.
+//!
+//! `cargo bench` runs them; `torus-search bench` prints the same figures
+//! without criterion's statistics.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use std::hint::black_box;
+use torus_search::bench::{mcts_loops, rollout_steps};
+use torus_search::config::Config;
+use torus_search::episode::Episode;
+use torus_search::mcts::Variant;
+use torus_search::prior::PriorSpec;
+use torus_search::searchers::PolicyKind;
+
+const N: u32 = 40;
+const RV: f64 = 1.0;
+
+fn rollouts(c: &mut Criterion) {
+    let mut g = c.benchmark_group("rollout_n40_rv1");
+    for (kind, steps) in [
+        (PolicyKind::Rw, 4_000_000u64),
+        (PolicyKind::Levy, 500_000),
+        (PolicyKind::Nsarw, 500_000),
+    ] {
+        // Each call overshoots `steps` by at most one rollout (~0.1%).
+        g.throughput(Throughput::Elements(steps));
+        let mut seed = 0u64;
+        g.bench_function(BenchmarkId::new("lattice_steps", kind.name()), |b| {
+            b.iter(|| {
+                seed += 1;
+                black_box(rollout_steps(kind, N, RV, 2.0, seed, steps).expect("valid"))
+            })
+        });
+    }
+    g.finish();
+}
+
+fn mcts(c: &mut Criterion) {
+    let mut g = c.benchmark_group("mcts_n40_l100");
+    g.sample_size(10);
+    for variant in [Variant::Cells, Variant::Tree] {
+        for sigma in [0.0, 5.0] {
+            let cfg = Config {
+                variant,
+                prior: PriorSpec::Gaussian { sigma },
+                ..Config::default()
+            };
+            let name = format!("{}_sigma{sigma}", variant.name());
+            g.throughput(Throughput::Elements(2_000));
+            g.bench_function(BenchmarkId::new("loops", &name), |b| {
+                b.iter(|| black_box(mcts_loops(&cfg, 1, 2_000).expect("valid")))
+            });
+        }
+    }
+    g.throughput(Throughput::Elements(1));
+    for sigma in [0.0, 5.0] {
+        let cfg = Config {
+            prior: PriorSpec::Gaussian { sigma },
+            ..Config::default()
+        };
+        let mut trial = 0u64;
+        g.bench_function(
+            BenchmarkId::new("episode_cells", format!("sigma{sigma}")),
+            |b| {
+                b.iter(|| {
+                    trial += 1;
+                    black_box(Episode::trial(&cfg, 1, trial).expect("valid").run())
+                })
+            },
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(benches, rollouts, mcts);
+criterion_main!(benches);
