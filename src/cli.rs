@@ -411,7 +411,10 @@ fn print_table(cfg: &Config, seed: u64, s: &Summary, seconds: f64, threads: usiz
         |m: &torus_search::stats::MeanCi| format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi);
     out!(
         "torus-search: N={} r_v={} prior={prior} start={},{} seed={seed}",
-        cfg.n, cfg.rv, cfg.start[0], cfg.start[1]
+        cfg.n,
+        cfg.rv,
+        cfg.start[0],
+        cfg.start[1]
     );
     out!("searcher: {who}");
     out!("{:<28}{}", "trials", s.trials);
@@ -421,17 +424,24 @@ fn print_table(cfg: &Config, seed: u64, s: &Summary, seconds: f64, threads: usiz
     out!("{:<28}{}", "mean steps/opt", ci(&s.ratio));
     out!(
         "{:<28}{:>10.3}",
-        "mean steps / mean opt", s.steps_over_mean_optimal
+        "mean steps / mean opt",
+        s.steps_over_mean_optimal
     );
     out!(
         "{:<28}{:>10.1}   (q1 {:.1}, q3 {:.1})",
-        "median steps", s.median_steps, s.q1_steps, s.q3_steps
+        "median steps",
+        s.median_steps,
+        s.q1_steps,
+        s.q3_steps
     );
     out!("{:<28}{}", "optimal = 0 (excluded)", s.zero_optimal);
     out!("{:<28}{}", "capped episodes", s.capped);
     out!(
         "{:<28}{} ({} steps, {} truncated)",
-        "rollouts", s.counters.rollouts, s.counters.rollout_steps, s.counters.truncated
+        "rollouts",
+        s.counters.rollouts,
+        s.counters.rollout_steps,
+        s.counters.truncated
     );
     out!("{:<28}{:.3} s on {threads} threads", "time", seconds);
 }

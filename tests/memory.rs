@@ -57,20 +57,59 @@ fn peak_during(cfg: &Config, moves: u32) -> usize {
 
 #[test]
 fn an_episode_at_n_1024_stays_under_64_mib() {
-    let big = Config { n: 1024, loops: 20, rollout_cap: 2000, ..Config::default() };
+    let big = Config {
+        n: 1024,
+        loops: 20,
+        rollout_cap: 2000,
+        ..Config::default()
+    };
     let cases = [
         ("mcts cells gaussian", big.clone()),
-        ("mcts cells uniform posterior", Config { prior: PriorSpec::Uniform, belief: Belief::Posterior, ..big.clone() }),
-        ("mcts tree gaussian", Config { variant: Variant::Tree, ..big.clone() }),
-        ("mcts cells nsarw rollouts", Config { rollout: PolicyKind::Nsarw, ..big.clone() }),
-        ("nsarw walker uniform", Config { searcher: SearcherKind::Nsarw, prior: PriorSpec::Uniform, ..big.clone() }),
+        (
+            "mcts cells uniform posterior",
+            Config {
+                prior: PriorSpec::Uniform,
+                belief: Belief::Posterior,
+                ..big.clone()
+            },
+        ),
+        (
+            "mcts tree gaussian",
+            Config {
+                variant: Variant::Tree,
+                ..big.clone()
+            },
+        ),
+        (
+            "mcts cells nsarw rollouts",
+            Config {
+                rollout: PolicyKind::Nsarw,
+                ..big.clone()
+            },
+        ),
+        (
+            "nsarw walker uniform",
+            Config {
+                searcher: SearcherKind::Nsarw,
+                prior: PriorSpec::Uniform,
+                ..big.clone()
+            },
+        ),
     ];
     for (name, cfg) in cases {
         let peak = peak_during(&cfg, 10);
         println!("{name:<32} peak heap {:>6.1} MiB", peak as f64 / MIB);
-        assert!((peak as f64) < 64.0 * MIB, "{name}: {:.1} MiB", peak as f64 / MIB);
+        assert!(
+            (peak as f64) < 64.0 * MIB,
+            "{name}: {:.1} MiB",
+            peak as f64 / MIB
+        );
         // The lattice alone needs 16 MiB of neighbour table: a figure far
         // below that means the measurement is broken.
-        assert!((peak as f64) > 16.0 * MIB, "{name}: {:.1} MiB", peak as f64 / MIB);
+        assert!(
+            (peak as f64) > 16.0 * MIB,
+            "{name}: {:.1} MiB",
+            peak as f64 / MIB
+        );
     }
 }
