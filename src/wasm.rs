@@ -10,7 +10,7 @@
 //! [`start`], logged, and its text kept for [`last_panic`].
 
 use crate::config::Config;
-use crate::episode::{Episode, Status};
+use crate::episode::{Counters, Episode, Status, TrialResult};
 use crate::render::{summarize, Alpha, Colorizer, Palette, Scale, Summary};
 use crate::searchers::PolicyKind;
 use std::sync::Mutex;
@@ -125,6 +125,59 @@ pub fn bench_mcts_loops(config: JsValue, seed: u64, loops: f64) -> Result<Vec<f6
     let (l, m, e) = crate::bench::mcts_loops(&cfg, seed, loops as u64)
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(vec![l as f64, m as f64, e as f64])
+}
+
+/// Numbers per trial in [`run_trial`]'s result and [`summarize_trials`]' input.
+const TRIAL_FIELDS: usize = 7;
+
+/// Runs trial `index` of a batch of `config` with `seed` to the end and returns
+/// `[steps, optimal, found (0/1), target, rollouts, rollout_steps, truncated]`.
+/// Trial streams derive from `(seed, index)` only, so any split of a batch
+/// over Web Workers gives the same results.
+#[wasm_bindgen(js_name = runTrial)]
+pub fn run_trial(config: JsValue, seed: u64, index: f64) -> Result<Vec<f64>, JsError> {
+    let cfg = parse_config(config)?;
+    let mut ep =
+        Episode::trial(&cfg, seed, index as u64).map_err(|e| JsError::new(&e.to_string()))?;
+    ep.set_clock(performance_now);
+    let r = ep.run();
+    Ok(vec![
+        r.steps as f64,
+        r.optimal as f64,
+        r.found as u8 as f64,
+        r.target as f64,
+        r.counters.rollouts as f64,
+        r.counters.rollout_steps as f64,
+        r.counters.truncated as f64,
+    ])
+}
+
+/// The batch statistics (the core's `stats::Summary`: means with 95% CIs,
+/// ASOO, ratio, quartiles, capped, ...) of trials given as concatenated
+/// [`run_trial`] results.
+#[wasm_bindgen(js_name = summarizeTrials)]
+pub fn summarize_trials(flat: &[f64]) -> Result<JsValue, JsError> {
+    if flat.len() % TRIAL_FIELDS != 0 || flat.is_empty() {
+        return Err(JsError::new(&format!(
+            "trials must be a non-empty list of {TRIAL_FIELDS}-number results, got {} numbers",
+            flat.len()
+        )));
+    }
+    let results: Vec<TrialResult> = flat
+        .chunks_exact(TRIAL_FIELDS)
+        .map(|t| TrialResult {
+            steps: t[0] as u32,
+            optimal: t[1] as u32,
+            found: t[2] != 0.0,
+            target: t[3] as u32,
+            counters: Counters {
+                rollouts: t[4] as u64,
+                rollout_steps: t[5] as u64,
+                truncated: t[6] as u64,
+            },
+        })
+        .collect();
+    to_js(&crate::stats::Summary::of(&results))
 }
 
 fn parse_config(config: JsValue) -> Result<Config, JsError> {

@@ -229,3 +229,28 @@ fn benchmark_workloads() {
         .unwrap();
     assert!(r[0] >= 50.0 && r[1] >= 4.0, "{r:?}");
 }
+
+#[wasm_bindgen_test]
+fn batch_trials_match_the_core_and_summarize() {
+    let json = r#"{"n":12,"prior":{"kind":"gaussian","sigma":2},"loops":10,"belief":"posterior","step_cap":500}"#;
+    let cfg: Config = serde_json::from_str(json).unwrap();
+    let mut flat = Vec::new();
+    for i in 0..4u64 {
+        let t = facade::run_trial(js(json), 3, i as f64)
+            .map_err(JsValue::from)
+            .unwrap();
+        let core = CoreEpisode::trial(&cfg, 3, i).unwrap().run();
+        assert_eq!(t[0], core.steps as f64);
+        assert_eq!(t[1], core.optimal as f64);
+        assert_eq!(t[3], core.target as f64);
+        flat.extend(t);
+    }
+    let s = facade::summarize_trials(&flat)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(get(&s, "trials").as_f64(), Some(4.0));
+    let mean = get(&get(&s, "steps"), "mean").as_f64().unwrap();
+    let want = flat.chunks(7).map(|t| t[0]).sum::<f64>() / 4.0;
+    assert!((mean - want).abs() < 1e-9);
+    assert!(facade::summarize_trials(&[1.0, 2.0]).is_err());
+}

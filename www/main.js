@@ -7,6 +7,7 @@ import { parseParams, parseValue, serializeConfig, defaults, describeSearcher, e
 import { Renderer, drawColorbar, drawNotice, MOVE_NAMES } from './renderer.js';
 import { Controller } from './controller.js';
 import { StepsChart } from './charts.js';
+import { WorkerPool } from './worker-pool.js';
 
 const SPEEDS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
 const SPEC = Object.fromEntries(SPECS.map((s) => [s.key, s]));
@@ -39,6 +40,7 @@ const page = {
   trapped: false,
 };
 window.torusPage = page; // for tests and the console
+page.WorkerPool = WorkerPool;
 
 // ---------------------------------------------------------------- messages
 
@@ -267,6 +269,8 @@ function bindControls() {
     });
   }
 
+  $('batch-run').addEventListener('click', runBatch);
+  $('batch-stop').addEventListener('click', () => page.pool?.terminate());
   $('teaching').addEventListener('click', () => applyPreset('teaching'));
   $('defaults').addEventListener('click', () => applyPreset('default'));
   $('copy-link').addEventListener('click', copyLink);
@@ -823,6 +827,71 @@ function onState(state) {
   showMessage(same ? `Replayed exactly: the path matches the imported episode (${got.length - 1} steps).` : `The replay differs from the imported episode (${got.length - 1} vs ${want.length - 1} steps)${note}.`);
   document.body.dataset.replay = same ? 'match' : 'differ';
   page.replay = null;
+}
+
+// ------------------------------------------------------------------ batch
+
+async function runBatch() {
+  const trials = Number($('batch-trials').value);
+  const cap = Number($('batch-cap').value);
+  if (!Number.isInteger(trials) || trials < 1 || trials > 100000) return showMessage('Batch trials must be an integer 1–100000.');
+  if (!Number.isInteger(cap) || cap < 1 || cap > 1000000) return showMessage('Batch step cap must be an integer 1–1000000.');
+  const core = coreConfig(page.config, { weights: weightsFromPaint(), keepTraces: 0 });
+  core.step_cap = cap;
+  try {
+    page.wasm.checkConfig(core);
+  } catch (err) {
+    return showMessage(`Batch: ${err.message}`);
+  }
+  page.pool ??= new WorkerPool();
+  $('batch-run').disabled = true;
+  $('batch-stop').disabled = false;
+  $('batch-summary').hidden = true;
+  const t0 = performance.now();
+  const progress = $('batch-progress');
+  setText(progress, `Running ${trials} trials on ${page.pool.size} worker${page.pool.size > 1 ? 's' : ''}…`);
+  document.body.dataset.batch = 'running';
+  try {
+    const results = await page.pool.run(core, page.config.seed, trials, (_, __, done) => {
+      setText(progress, `${done} / ${trials} trials (${page.pool.size} workers, ${((performance.now() - t0) / 1000).toFixed(1)} s)`);
+    });
+    const secs = (performance.now() - t0) / 1000;
+    page.lastBatch = results;
+    showBatchSummary(page.wasm.summarizeTrials(Float64Array.from(results.flat())), secs);
+    setText(progress, `${trials} trials in ${secs.toFixed(2)} s on ${page.pool.size} worker${page.pool.size > 1 ? 's' : ''} (${(trials / secs).toFixed(1)} trials/s).`);
+    document.body.dataset.batch = 'done';
+  } catch (err) {
+    setText(progress, err.message === 'stopped' ? 'Stopped.' : `Batch failed: ${err.message}`);
+    document.body.dataset.batch = err.message === 'stopped' ? 'stopped' : 'error';
+  } finally {
+    $('batch-run').disabled = false;
+    $('batch-stop').disabled = true;
+  }
+}
+
+function showBatchSummary(s, secs) {
+  const ci = (m, d = 1) => `${m.mean.toFixed(d)} [${m.lo.toFixed(d)}, ${m.hi.toFixed(d)}]`;
+  const rows = [
+    ['Trials', String(s.trials)],
+    ['Mean steps [95% CI]', ci(s.steps)],
+    ['Mean optimal', s.optimal.mean.toFixed(1)],
+    ['ASOO = mean(steps − optimal)', ci(s.asoo)],
+    ['Mean steps/optimal', Number.isFinite(s.ratio.mean) ? ci(s.ratio, 2) : '—'],
+    ['Mean steps / mean optimal', s.steps_over_mean_optimal.toFixed(2)],
+    ['Median steps (q1–q3)', `${s.median_steps} (${s.q1_steps}–${s.q3_steps})`],
+    ['Capped (not found)', String(s.capped)],
+    ['Optimal = 0 (excluded from ratio)', String(s.zero_optimal)],
+    ['Truncated rollouts', fmtInt(s.counters.truncated)],
+    ['Seconds', secs.toFixed(2)],
+  ];
+  const body = $('batch-summary').tBodies[0];
+  body.replaceChildren();
+  for (const [k, v] of rows) {
+    const tr = body.insertRow();
+    tr.insertCell().textContent = k;
+    tr.insertCell().textContent = v;
+  }
+  $('batch-summary').hidden = false;
 }
 
 // ------------------------------------------------------------------- boot

@@ -372,6 +372,31 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
   }, { viewport: { width: 390, height: 844 } });
 });
 
+test('batch trials in Web Workers: same results for any number of workers, trial 0 = the page episode', { timeout: 240_000 }, async () => {
+  await withApp('?n=16&sigma=3&loops=15&belief=posterior&seed=21&autoplay=0', async (page) => {
+    const batch = async () => {
+      await page.evaluate(() => delete document.body.dataset.batch);
+      await page.click('#batch-run');
+      await page.waitForFunction(() => ['done', 'error', 'stopped'].includes(document.body.dataset.batch), null, { timeout: 120_000 });
+      assert.equal(await page.evaluate(() => document.body.dataset.batch), 'done', await text(page, '#batch-progress'));
+      return page.evaluate(() => window.torusPage.lastBatch);
+    };
+    await page.fill('#batch-trials', '12');
+    const one = await batch();
+    assert.equal(one.length, 12);
+    await page.evaluate(() => {
+      window.torusPage.pool.terminate();
+      window.torusPage.pool = new window.torusPage.WorkerPool(3);
+    });
+    const three = await batch();
+    assert.deepEqual(three, one);
+    assert.match(await page.locator('#batch-summary').innerText(), /ASOO/);
+    await runToEnd(page);
+    const steps = (await mainPath(page)).length - 1;
+    assert.equal(one[0][0], steps, 'trial 0 of the batch is the episode on the page');
+  });
+});
+
 test('copy the best screenshots to docs/', { timeout: 30_000 }, async () => {
   await mkdir(path.join(ROOT, 'docs'), { recursive: true });
   for (const name of ['default-demo', 'teaching-view', 'race-mode']) {
