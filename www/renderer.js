@@ -336,7 +336,7 @@ export class Renderer {
         const [x, y] = cellXY(scene.position, n);
         if (scene.rv > 0 && scene.rv * cs >= 6) ring(scene.position, scene.rv + 0.5, 'rgba(255,255,255,0.5)', 1, [3, 3]);
         ctx.beginPath();
-        ctx.arc(x + 0.5, y + 0.5, Math.max(0.38, markerR), 0, 2 * Math.PI);
+        ctx.arc(x + 0.5, y + 0.5, Math.max(0.3, markerR), 0, 2 * Math.PI);
         ctx.fillStyle = COLORS.searcher;
         ctx.fill();
         ctx.strokeStyle = '#000';

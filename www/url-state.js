@@ -20,7 +20,7 @@ export const SPECS = [
   { key: 'searcher', kind: 'enum', values: ['mcts', 'rw', 'levy', 'nsarw'], def: 'mcts' },
   { key: 'variant', kind: 'enum', values: ['cells', 'tree'], def: 'cells' },
   { key: 'rollout', kind: 'enum', values: ['rw', 'levy', 'nsarw', 'greedy'], def: 'rw' },
-  { key: 'belief', kind: 'enum', values: ['prior', 'posterior'], def: 'prior' },
+  { key: 'belief', kind: 'enum', values: ['prior', 'posterior'], def: 'posterior' },
   { key: 'loops', kind: 'int', min: 1, max: 1000000, def: 100, help: 'integer 1–1000000' },
   { key: 'ms', kind: 'float', min: 0, max: 60000, def: 0, help: 'number 0–60000 (0 = use loops)' },
   { key: 'c', kind: 'float', min: 0, max: 100, def: SQRT2, help: 'number 0–100' },

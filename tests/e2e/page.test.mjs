@@ -66,6 +66,13 @@ async function runToEnd(page) {
   return waitState(page, ['found', 'capped']);
 }
 
+/** A viewport (not full-page) PNG in target/e2e/, the size the README shows. */
+async function viewShot(page, name) {
+  await mkdir(SHOT_DIR, { recursive: true });
+  await page.evaluate(() => window.scrollTo(0, 0));
+  await page.screenshot({ path: path.join(SHOT_DIR, `${name}.png`) });
+}
+
 /** A hash of the main canvas's pixels. */
 function canvasHash(page, id = 'view-0') {
   return page.evaluate((cid) => {
@@ -89,7 +96,8 @@ test('the default demo autoplays, draws and reaches found with no console errors
     assert.equal(cfg.variant, 'cells');
     assert.equal(cfg.rollout, 'rw');
     assert.equal(cfg.loops, 100);
-    await screenshot(page, 'default-demo');
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 20, null, { timeout: 60_000 });
+    await viewShot(page, 'default-demo');
     assert.equal(await runToEnd(page), 'found');
     const steps = Number((await text(page, '#steps')).replace(/,/g, ''));
     const optimal = Number(await text(page, '#optimal'));
@@ -319,7 +327,7 @@ test('race mode: same target and seed, side by side, with a scoreboard', { timeo
     assert.equal(targets[0], targets[1]);
     assert.equal(await page.locator('#board-1').isVisible(), true);
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 12, null, { timeout: 60_000 });
-    await screenshot(page, 'race-mode');
+    await viewShot(page, 'race-mode');
     await runToEnd(page);
     await page.waitForFunction(() => window.torusPage.controller.runs.every((r) => r.status() !== 'running'), null, { timeout: 90_000 });
     await page.evaluate(() => window.torusPage.controller.requestDraw());
@@ -335,8 +343,9 @@ test('teaching view, clicking the grid sets the start, painting a prior', { time
     assert.match(await page.evaluate(() => location.search), /n=11/);
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
     await page.click('#play');
-    await page.click('#step-loop');
-    await screenshot(page, 'teaching-view');
+    for (let i = 0; i < 3; i++) await page.click('#step-loop');
+    await page.waitForTimeout(100);
+    await viewShot(page, 'teaching-view');
     // Click the cell in the middle of the grid: start becomes (6,6).
     const box = await page.locator('#view-0').boundingBox();
     await page.mouse.click(box.x + box.width * (5.5 / 11), box.y + box.height * (5.5 / 11));
