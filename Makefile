@@ -23,7 +23,7 @@ help:
 	@echo "make build   build www/pkg (wasm-bindgen --target web) and www/vendor"
 	@echo "make serve   setup + build, then serve the page at http://127.0.0.1:8080/"
 	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
-	@echo "make bench   cargo bench, plus tests/e2e/bench.mjs if present"
+	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
@@ -81,10 +81,15 @@ test-e2e:
 bench: setup
 	$(call section,cargo bench)
 	cargo bench $(LOCKED)
+	$(call section,native CLI benchmark (torus-search bench))
+	cargo run $(LOCKED) --release --quiet -- bench
+	@scripts/build.sh
+	$(call section,wasm vs native rollouts in Node.js (benches/wasm-node.mjs))
+	node benches/wasm-node.mjs
 	@if [[ -f tests/e2e/bench.mjs ]]; then \
-	  scripts/setup.sh --browser && scripts/build.sh && \
+	  scripts/setup.sh --browser && \
 	  printf '\n==== %s ====\n' "browser benchmark (tests/e2e/bench.mjs)" && \
-	  node tests/e2e/bench.mjs; \
+	  node tests/e2e/bench.mjs --native; \
 	fi
 
 clean:
