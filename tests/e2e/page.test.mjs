@@ -96,6 +96,7 @@ test('the default demo autoplays, draws and reaches found with no console errors
     assert.equal(cfg.variant, 'cells');
     assert.equal(cfg.rollout, 'rw');
     assert.equal(cfg.loops, 100);
+    assert.equal(cfg.belief, 'posterior', 'the page plans with the posterior by default');
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 20, null, { timeout: 60_000 });
     await viewShot(page, 'default-demo');
     assert.equal(await runToEnd(page), 'found');
@@ -178,7 +179,7 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
       ['#searcher', (p) => p.selectOption('#searcher', 'nsarw'), 'searcher=nsarw', true],
       ['#variant', (p) => p.selectOption('#variant', 'tree'), 'variant=tree', false],
       ['#rollout', (p) => p.selectOption('#rollout', 'greedy'), 'rollout=greedy', false],
-      ['#belief', (p) => p.selectOption('#belief', 'posterior'), 'belief=posterior', false],
+      ['#belief', (p) => p.selectOption('#belief', 'prior'), 'belief=prior', false],
       ['#loops', (p) => p.fill('#loops', '7'), 'loops=7', false],
       ['#budget', (p) => p.selectOption('#budget', 'ms'), 'ms=20', false],
       ['#c', (p) => p.fill('#c', '0.5'), 'c=0.5', false],
