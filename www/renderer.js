@@ -280,7 +280,7 @@ export class Renderer {
       this.pathCache.reset(n);
     }
 
-    const markerR = Math.max(0.5, 5 / cs); // at least 5 device px
+    const markerR = Math.max(0.3, 5 / cs); // at least 5 device px
     const ring = (idx, r, color, width, dash) => {
       const [x, y] = cellXY(idx, n);
       ctx.beginPath();
