@@ -104,7 +104,7 @@ struct RunArgs {
     #[arg(long, value_enum, default_value = "rw")]
     rollout: RolloutArg,
     /// Where practice targets come from.
-    #[arg(long, value_enum, default_value = "prior")]
+    #[arg(long, value_enum, default_value = "posterior")]
     belief: BeliefArg,
     /// Lattice side N (3..=1024).
     #[arg(long, default_value_t = 40, allow_negative_numbers = true)]
@@ -497,13 +497,16 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
             if !json {
                 out!(
                     "{:<34}{:>14.1} loops/s {:>10.3} episodes/s",
-                    format!("mcts {vname} N=40 L=100 sigma={sigma}"),
+                    format!("mcts {vname} N=40 L=100 sigma={sigma} posterior"),
                     lps,
                     eps
                 );
             }
         }
     }
+    // Episodes use the default posterior belief: with the prior a `cells`
+    // searcher can be trapped until the step cap, which measures the cap.
+    out.insert("belief".into(), Config::default().belief.name().into());
     if json {
         out!("{}", serde_json::Value::Object(out));
     }

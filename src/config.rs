@@ -95,7 +95,9 @@ pub struct Config {
     pub variant: Variant,
     /// MCTS rollout (default) policy.
     pub rollout: PolicyKind,
-    /// Where practice targets come from.
+    /// Where practice targets come from. The default is the posterior: with
+    /// the paper's prior a `cells` searcher can shuttle between two cells at
+    /// the prior's mode for ever (see README, "Where it departs from the paper").
     pub belief: Belief,
     /// MCTS loops per real move (used when `decision_ms` is `None`).
     pub loops: u32,
@@ -149,7 +151,7 @@ impl Default for Config {
             searcher: SearcherKind::Mcts,
             variant: Variant::Cells,
             rollout: PolicyKind::Rw,
-            belief: Belief::Prior,
+            belief: Belief::Posterior,
             loops: 100,
             decision_ms: None,
             c: std::f64::consts::SQRT_2,

@@ -13,6 +13,7 @@ fn small() -> Config {
         n: 12,
         prior: PriorSpec::Gaussian { sigma: 2.5 },
         loops: 16,
+        belief: Belief::Prior,
         rollout_cap: 400,
         step_cap: 400,
         ..Config::default()
