@@ -624,7 +624,12 @@ function updateDecision(snap, run) {
   const d = snap.decision;
   if (!d) {
     for (const tr of body.rows) for (const td of tr.cells) setText(td, '–');
-    setText('decision-note', run.isMcts ? '' : `${run.label} does not deliberate: each step is one random move.`);
+    const how = {
+      rw: 'each step is one of the four moves, uniformly at random',
+      levy: 'it flies a power-law distributed length in a uniformly random direction, walked as unit moves',
+      nsarw: 'each step goes to a least-visited neighbour, ties broken at random',
+    }[run.core.searcher];
+    setText('decision-note', run.isMcts ? '' : `${run.label} does not deliberate: ${how}.`);
     return;
   }
   const lead = snap.status === 'running' ? leading(d) : -1;
@@ -684,7 +689,16 @@ function updateLegend(snap) {
       const name = document.createElement('span');
       name.textContent = l.binary ? l.label : `${l.label}${l.scale === 'log' ? ' (log)' : ''}`;
       const bar = document.createElement('canvas');
-      drawColorbar(bar, lut(l.palette));
+      if (l.binary) {
+        // Two swatches: the background, and the top colour at the layer's alpha over it.
+        const top = lut(l.palette).slice(1020, 1024);
+        const a = l.alphaHi / 255;
+        const bg = [16, 20, 24];
+        const mix = bg.map((c, k) => Math.round(c * (1 - a) + top[k] * a));
+        drawColorbar(bar, Uint8Array.from([...Array(128)].flatMap(() => [...bg, 255]).concat([...Array(128)].flatMap(() => [...mix, 255]))));
+      } else {
+        drawColorbar(bar, lut(l.palette));
+      }
       const ticks = document.createElement('div');
       ticks.className = 'ticks';
       ticks.append(document.createElement('span'), document.createElement('span'));
