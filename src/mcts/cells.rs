@@ -15,7 +15,7 @@
 //! persists across the searcher's moves unless reset each move, as some of
 //! the paper's scripts do.
 
-use super::{argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
+use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
 use crate::lattice::Move;
 use crate::searchers::Visit;
 
@@ -88,16 +88,7 @@ impl CellTable {
         let children = std::array::from_fn(|i| {
             let cell = env_torus.step(root, Move::ALL[i]);
             let (v, q) = (self.visits[cell as usize], self.reward[cell as usize]);
-            let (mean, explore, uct) = uct_terms(q, v, parent, c);
-            ChildStat {
-                cell,
-                visits: v,
-                reward: q,
-                mean,
-                explore,
-                uct,
-                selected: self.selected[i],
-            }
+            ChildStat::new(cell, v, q, parent, c, self.selected[i])
         });
         DecisionView {
             parent_visits: parent,

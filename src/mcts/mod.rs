@@ -86,6 +86,30 @@ pub struct ChildStat {
     pub selected: u32,
 }
 
+impl ChildStat {
+    /// The statistics of a child with `visits` and summed `reward` under a
+    /// parent with `parent_visits`, selected `selected` times this decision.
+    pub fn new(
+        cell: u32,
+        visits: u32,
+        reward: f64,
+        parent_visits: u32,
+        c: f64,
+        selected: u32,
+    ) -> ChildStat {
+        let (mean, explore, uct) = uct_terms(reward, visits, parent_visits, c);
+        ChildStat {
+            cell,
+            visits,
+            reward,
+            mean,
+            explore,
+            uct,
+            selected,
+        }
+    }
+}
+
 /// A snapshot of the decision under way.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct DecisionView {

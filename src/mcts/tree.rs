@@ -103,16 +103,7 @@ impl Tree {
                 NONE => (0, 0.0),
                 k => (self.nodes[k as usize].visits, self.nodes[k as usize].reward),
             };
-            let (mean, explore, uct) = uct_terms(q, v, root.visits, c);
-            ChildStat {
-                cell,
-                visits: v,
-                reward: q,
-                mean,
-                explore,
-                uct,
-                selected: self.selected[i],
-            }
+            ChildStat::new(cell, v, q, root.visits, c, self.selected[i])
         });
         DecisionView {
             parent_visits: root.visits,
