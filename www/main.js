@@ -335,7 +335,7 @@ function applyPreset(name) {
   page.controller.setSpeed(d.speed);
   restart({ autoplay: true });
   if (name === 'teaching') {
-    showMessage('Teaching view: one MCTS loop per frame. Each loop draws a practice target (◇) from the prior, picks the neighbour with the highest UCT value, runs a random rollout from it until the rollout finds the practice target, and adds the reward 1/τ to every cell the rollout passed. Pause and press ↑ to step a single loop.');
+    showMessage('Teaching view: one MCTS loop per frame. Each loop draws a practice target (◇) from the belief (the prior, or the posterior: the prior with searched cells removed), picks the neighbour with the highest UCT value, runs a random rollout from it until the rollout finds the practice target, then adds one visit to every cell the loop passed and credits each with 1/(its own steps to the practice target): the picked neighbour gets 1/τ. Pause and press ↑ to step a single loop.');
   }
 }
 
