@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Steps and ASOO against sigma on the paper's 40x40 torus, for every searcher.
 # Usage: scripts/experiment-sigma.sh [TRIALS] [SEED] > docs/experiment-sigma.md
-# Trial i of every row uses the same seed stream, so rows are paired.
+# Trial i of every row uses the same seed stream, so rows are paired. The
+# step cap (5000) ends trapped episodes (see README: the prior belief) as
+# failures, counted in "capped".
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 trials=${1:-200}
@@ -13,7 +15,7 @@ echo "| --- | --- | --- | --- | --- | --- |"
 for sigma in 0 2 5 10 inf; do
   for who in "mcts cells posterior" "mcts cells prior" "mcts tree posterior" "rw" "levy" "nsarw"; do
     set -- $who
-    args=(run --n 40 --trials "$trials" --seed "$seed" --sigma "$sigma" --json --step-cap 20000)
+    args=(run --n 40 --trials "$trials" --seed "$seed" --sigma "$sigma" --json --step-cap 5000)
     if [[ $1 == mcts ]]; then args+=(--searcher mcts --variant "$2" --belief "$3"); else args+=(--searcher "$1"); fi
     "$bin" "${args[@]}" | python3 -c '
 import json, sys

@@ -69,29 +69,23 @@ export function appendWrapPath(p2d, cells, from, to, n) {
 
 /**
  * Splits a path into the visible segments, for tests: returns a list of
- * [x0,y0,x1,y1] in cell units after clipping to [0,n]². Mirrors appendWrapPath.
+ * [x0,y0,x1,y1] in cell units after clipping to [0,n]², as appendWrapPath draws them.
  */
 export function wrapSegments(cells, n) {
+  // Records what appendWrapPath draws, so the tests check the drawing code itself.
+  const c = (v) => Math.min(n, Math.max(0, v));
   const segs = [];
-  const clip = (x0, y0, x1, y1) => {
-    // Axis-aligned or diagonal steps: clamp both ends into the box.
-    const c = (v) => Math.min(n, Math.max(0, v));
-    segs.push([c(x0), c(y0), c(x1), c(y1)]);
+  let at = [0, 0];
+  const pen = {
+    moveTo(x, y) {
+      at = [x, y];
+    },
+    lineTo(x, y) {
+      segs.push([c(at[0]), c(at[1]), c(x), c(y)]);
+      at = [x, y];
+    },
   };
-  for (let i = 1; i < cells.length; i++) {
-    const [px, py] = cellXY(cells[i - 1], n);
-    const [x, y] = cellXY(cells[i], n);
-    const dx = wrapDelta(px, x, n);
-    const dy = wrapDelta(py, y, n);
-    const ux = px + dx;
-    const uy = py + dy;
-    if (ux < 0 || ux >= n || uy < 0 || uy >= n) {
-      clip(px + 0.5, py + 0.5, ux + 0.5, uy + 0.5);
-      clip(x - dx + 0.5, y - dy + 0.5, x + 0.5, y + 0.5);
-    } else {
-      clip(px + 0.5, py + 0.5, x + 0.5, y + 0.5);
-    }
-  }
+  appendWrapPath(pen, cells, 0, cells.length, n);
   return segs;
 }
 
