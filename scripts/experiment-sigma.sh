@@ -10,6 +10,8 @@ trials=${1:-200}
 seed=${2:-1}
 cargo build --release --quiet
 bin=target/release/torus-search
+echo "Produced by \`scripts/experiment-sigma.sh $trials $seed\` (N = 40, r_v = 1, start (1,1), L = 100, c = √2, RW rollouts for MCTS, step cap 5000; a capped episode counts 5000 steps). Rows with the same sigma share the target of each trial."
+echo
 echo "| searcher | sigma | mean steps [95% CI] | ASOO [95% CI] | median | capped |"
 echo "| --- | --- | --- | --- | --- | --- |"
 for sigma in 0 2 5 10 inf; do
