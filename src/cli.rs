@@ -185,11 +185,9 @@ macro_rules! out {
 }
 
 fn flag(field: &str) -> String {
+    // Config fields are named after their flags, except the decision time.
     match field {
         "ms" => "--decision-ms".into(),
-        "prior" | "sigma" | "n" | "rv" | "start" | "target" | "loops" | "c" | "mu" | "epsilon" => {
-            format!("--{field}")
-        }
         other => format!("--{other}"),
     }
 }

@@ -40,6 +40,14 @@ impl Counters {
     }
 }
 
+impl std::ops::AddAssign for Counters {
+    fn add_assign(&mut self, o: Counters) {
+        self.rollouts += o.rollouts;
+        self.rollout_steps += o.rollout_steps;
+        self.truncated += o.truncated;
+    }
+}
+
 /// The result of one trial.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct TrialResult {
@@ -236,10 +244,9 @@ impl Episode {
     }
 
     fn mark_searched(&mut self, cell: u32) {
-        let (x, y) = self.torus.xy(cell);
         let mass = self.known_plan.as_ref().unwrap_or(&self.prior).mass();
-        for &(dx, dy) in self.sensor.offsets() {
-            let c = self.torus.cell(x as i64 + dx as i64, y as i64 + dy as i64) as usize;
+        for c in self.sensor.around(cell) {
+            let c = c as usize;
             if self.searched[c] == 0 {
                 self.searched[c] = 1;
                 self.remaining -= mass[c];

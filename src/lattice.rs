@@ -283,17 +283,19 @@ impl Sensor {
         torus.dist2(a, b) <= self.r2
     }
 
+    /// The cells within the radius of `cell`, each once.
+    pub fn around(&self, cell: u32) -> impl Iterator<Item = u32> + '_ {
+        disc(self.n, &self.offsets, cell)
+    }
+
     /// Marks the cells that detect a target at `target` (disarming the previous one).
     pub fn arm(&mut self, target: u32) {
         if self.armed == Some(target) {
             return;
         }
         self.disarm();
-        let n = self.n as i64;
-        let (tx, ty) = ((target % self.n) as i64, (target / self.n) as i64);
-        for &(dx, dy) in &self.offsets {
-            let c = ((ty + dy as i64).rem_euclid(n) * n + (tx + dx as i64).rem_euclid(n)) as usize;
-            self.mask[c] = 1;
+        for c in disc(self.n, &self.offsets, target) {
+            self.mask[c as usize] = 1;
         }
         self.armed = Some(target);
     }
@@ -301,12 +303,8 @@ impl Sensor {
     /// Clears the mask.
     pub fn disarm(&mut self) {
         if let Some(t) = self.armed.take() {
-            let n = self.n as i64;
-            let (tx, ty) = ((t % self.n) as i64, (t / self.n) as i64);
-            for &(dx, dy) in &self.offsets {
-                let c =
-                    ((ty + dy as i64).rem_euclid(n) * n + (tx + dx as i64).rem_euclid(n)) as usize;
-                self.mask[c] = 0;
+            for c in disc(self.n, &self.offsets, t) {
+                self.mask[c as usize] = 0;
             }
         }
     }
@@ -330,18 +328,21 @@ impl Sensor {
 
     /// Fewest moves from `start` until a target at `target` is detected.
     pub fn optimal_steps(&self, torus: &Torus, start: u32, target: u32) -> u32 {
-        let (tx, ty) = torus.xy(target);
-        self.offsets
-            .iter()
-            .map(|&(dx, dy)| {
-                torus.l1(
-                    start,
-                    torus.cell(tx as i64 + dx as i64, ty as i64 + dy as i64),
-                )
-            })
+        self.around(target)
+            .map(|c| torus.l1(start, c))
             .min()
             .unwrap_or(0)
     }
+}
+
+/// The cells at `offsets` from `cell` on an `n`×`n` torus. A free function
+/// so that `arm` can write the mask while it borrows only the offsets.
+fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> + '_ {
+    let (x, y) = ((cell % n) as i64, (cell / n) as i64);
+    let n = n as i64;
+    offsets.iter().map(move |&(dx, dy)| {
+        ((y + dy as i64).rem_euclid(n) * n + (x + dx as i64).rem_euclid(n)) as u32
+    })
 }
 
 #[cfg(test)]

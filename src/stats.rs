@@ -143,9 +143,7 @@ impl Summary {
         sorted.sort_by(f64::total_cmp);
         let mut counters = Counters::default();
         for r in results {
-            counters.rollouts += r.counters.rollouts;
-            counters.rollout_steps += r.counters.rollout_steps;
-            counters.truncated += r.counters.truncated;
+            counters += r.counters;
         }
         Summary {
             trials: results.len() as u64,
