@@ -52,27 +52,71 @@ pub fn rollout_steps(
 /// # Errors
 /// A [`ConfigError`] naming the first invalid field.
 pub fn mcts_loops(cfg: &Config, seed: u64, loops: u64) -> Result<(u64, u64, u64), ConfigError> {
-    if cfg.searcher != crate::config::SearcherKind::Mcts {
-        return Err(ConfigError::new(
-            "searcher",
-            cfg.searcher.name(),
-            "mcts for a loop benchmark",
-        ));
-    }
-    let mut trial = 0;
-    let mut e = Episode::trial(cfg, seed, trial)?;
-    let (mut done, mut moves, mut episodes) = (0u64, 0u64, 0u64);
-    while done < loops {
-        let before = e.counters().rollouts;
-        if e.step_loops(64) {
-            moves += 1;
+    let mut r = LoopRunner::new(cfg, seed)?;
+    r.run(loops)?;
+    Ok((r.loops, r.moves, r.episodes))
+}
+
+/// The MCTS loops of trials 0, 1, 2, … of a config, in order: the same loops
+/// the page's episode (trial 0) runs, so a stretch of them can be timed
+/// natively and in the browser alike.
+pub struct LoopRunner {
+    cfg: Config,
+    seed: u64,
+    trial: u64,
+    episode: Episode,
+    /// Loops run so far.
+    pub loops: u64,
+    /// Real moves made so far.
+    pub moves: u64,
+    /// Episodes finished so far.
+    pub episodes: u64,
+}
+
+impl LoopRunner {
+    /// Starts at loop 0 of trial 0.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] naming the first invalid field, or the searcher if
+    /// it is not MCTS (walkers have no loops).
+    pub fn new(cfg: &Config, seed: u64) -> Result<LoopRunner, ConfigError> {
+        if cfg.searcher != crate::config::SearcherKind::Mcts {
+            return Err(ConfigError::new(
+                "searcher",
+                cfg.searcher.name(),
+                "mcts for a loop benchmark",
+            ));
         }
-        done += e.counters().rollouts - before;
-        if e.status() != crate::episode::Status::Running {
-            episodes += 1;
-            trial += 1;
-            e = Episode::trial(cfg, seed, trial)?;
-        }
+        Ok(LoopRunner {
+            cfg: cfg.clone(),
+            seed,
+            trial: 0,
+            episode: Episode::trial(cfg, seed, 0)?,
+            loops: 0,
+            moves: 0,
+            episodes: 0,
+        })
     }
-    Ok((done, moves, episodes))
+
+    /// Runs `loops` more loops.
+    ///
+    /// # Errors
+    /// Only if a new trial's config were invalid (it was checked in `new`).
+    pub fn run(&mut self, loops: u64) -> Result<(), ConfigError> {
+        let target = self.loops + loops;
+        while self.loops < target {
+            let before = self.episode.counters().rollouts;
+            let chunk = (target - self.loops).min(64) as u32;
+            if self.episode.step_loops(chunk) {
+                self.moves += 1;
+            }
+            self.loops += self.episode.counters().rollouts - before;
+            if self.episode.status() != crate::episode::Status::Running {
+                self.episodes += 1;
+                self.trial += 1;
+                self.episode = Episode::trial(&self.cfg, self.seed, self.trial)?;
+            }
+        }
+        Ok(())
+    }
 }

@@ -35,6 +35,17 @@ enum Cmd {
         /// Scale every workload (1 = about 10 s in all).
         #[arg(long, default_value_t = 1.0)]
         scale: f64,
+        /// Instead of the suite: time loops FROM..TO of one MCTS episode whose
+        /// core config (JSON, as the page exports it) is in this file. The
+        /// browser benchmark uses it to time the very loops the page ran.
+        #[arg(long, value_name = "FILE", requires = "loops")]
+        episode: Option<std::path::PathBuf>,
+        /// The loop window for --episode, as FROM..TO.
+        #[arg(long, value_name = "FROM..TO", requires = "episode")]
+        loops: Option<String>,
+        /// The seed for --episode.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
 }
 
@@ -511,6 +522,52 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
     Ok(())
 }
 
+/// Times loops `from..to` of the episode (trials 0, 1, … of the config in `file`).
+fn bench_window(
+    file: &std::path::Path,
+    window: &str,
+    seed: u64,
+    json: bool,
+) -> Result<(), UsageError> {
+    let bad_window = || {
+        UsageError(format!(
+            "--loops must be FROM..TO with integers 0 <= FROM < TO <= 1000000000, got {window:?}"
+        ))
+    };
+    let (from, to) = window.split_once("..").ok_or_else(bad_window)?;
+    let (from, to): (u64, u64) = (
+        from.trim().parse().map_err(|_| bad_window())?,
+        to.trim().parse().map_err(|_| bad_window())?,
+    );
+    if from >= to || to > 1_000_000_000 {
+        return Err(bad_window());
+    }
+    let text = std::fs::read_to_string(file)
+        .map_err(|e| UsageError(format!("--episode {}: {e}", file.display())))?;
+    let cfg: Config = serde_json::from_str(&text).map_err(|e| {
+        UsageError(format!(
+            "--episode {} is not a core config (JSON): {e}",
+            file.display()
+        ))
+    })?;
+    cfg.validate().map_err(from_config)?;
+    let mut runner = torus_search::bench::LoopRunner::new(&cfg, seed).map_err(from_config)?;
+    runner.run(from).map_err(from_config)?;
+    let t = Instant::now();
+    runner.run(to - from).map_err(from_config)?;
+    let secs = t.elapsed().as_secs_f64();
+    let lps = (to - from) as f64 / secs;
+    if json {
+        out!(
+            "{}",
+            serde_json::json!({ "from": from, "to": to, "seconds": secs, "loops_per_s": lps })
+        );
+    } else {
+        out!("loops {from}..{to} of the episode: {lps:.1} loops/s ({secs:.3} s)");
+    }
+    Ok(())
+}
+
 /// Runs the CLI and returns the process exit code.
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
@@ -523,7 +580,14 @@ pub fn main() -> i32 {
     };
     let r = match &cli.cmd {
         Cmd::Run(a) => run(a),
-        Cmd::Bench { json, scale } => bench(*json, *scale),
+        Cmd::Bench {
+            episode: Some(file),
+            loops: Some(window),
+            seed,
+            json,
+            ..
+        } => bench_window(file, window, *seed, *json),
+        Cmd::Bench { json, scale, .. } => bench(*json, *scale),
     };
     match r {
         Ok(()) => 0,

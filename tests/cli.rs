@@ -98,6 +98,22 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             &["bench", "--scale", "0"],
             "--scale must be a number in (0, 1000]",
         ),
+        (
+            &["bench", "--episode", "Cargo.toml", "--loops", "5..5"],
+            "--loops must be FROM..TO with integers 0 <= FROM < TO",
+        ),
+        (
+            &["bench", "--episode", "Cargo.toml", "--loops", "x..9"],
+            "--loops must be FROM..TO",
+        ),
+        (
+            &["bench", "--episode", "no/such/file.json", "--loops", "0..9"],
+            "--episode no/such/file.json:",
+        ),
+        (
+            &["bench", "--episode", "Cargo.toml", "--loops", "0..9"],
+            "--episode Cargo.toml is not a core config (JSON)",
+        ),
     ];
     for (args, want) in cases {
         let o = cli(args);
@@ -231,4 +247,40 @@ fn bench_json_names_what_it_measures() {
     ] {
         assert!(v[f].as_f64().is_some_and(|x| x > 0.0), "{f} in {v}");
     }
+}
+
+#[test]
+fn bench_times_a_window_of_an_episode() {
+    let dir = std::env::temp_dir().join(format!("torus-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("core.json");
+    std::fs::write(
+        &file,
+        r#"{"n": 30, "prior": {"kind": "gaussian", "sigma": 4}, "loops": 50}"#,
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let v = json(&[
+        "bench",
+        "--json",
+        "--episode",
+        f,
+        "--loops",
+        "100..600",
+        "--seed",
+        "3",
+    ]);
+    assert_eq!(v["from"], 100);
+    assert_eq!(v["to"], 600);
+    assert!(v["loops_per_s"].as_f64().is_some_and(|x| x > 0.0), "{v}");
+    // A walker has no loops.
+    std::fs::write(&file, r#"{"searcher": "rw"}"#).unwrap();
+    let o = cli(&["bench", "--episode", f, "--loops", "0..10"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--searcher must be mcts for a loop benchmark"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -140,3 +140,47 @@ fn trials_do_not_depend_on_how_a_batch_is_split() {
     parts.extend(run_trials(&c, 9, 2, 4).unwrap());
     assert_eq!(whole, parts);
 }
+
+/// The benchmark's loop windows are the page's loops: running FROM then
+/// TO − FROM more loops lands exactly where one run of TO loops does, and
+/// the episode (trial 0) stepped in uneven chunks, as the page does, makes
+/// the same moves.
+#[wasm_bindgen_test(unsupported = test)]
+fn loop_windows_replay_the_page_episode() {
+    use torus_search::bench::LoopRunner;
+    use torus_search::episode::{Episode, Status};
+    let cfg = Config {
+        loops: 30,
+        ..small()
+    };
+    let mut split = LoopRunner::new(&cfg, 9).unwrap();
+    split.run(457).unwrap();
+    split.run(1234 - 457).unwrap();
+    let mut whole = LoopRunner::new(&cfg, 9).unwrap();
+    whole.run(1234).unwrap();
+    assert_eq!(
+        (split.loops, split.moves, split.episodes),
+        (1234, whole.moves, whole.episodes)
+    );
+    assert!(whole.moves > 0);
+
+    let mut page = Episode::new(&cfg, 9).unwrap();
+    let mut moves = 0u64;
+    let mut loops = 0u64;
+    let mut chunk = 1u32;
+    while loops < 1234 && page.status() == Status::Running {
+        let before = page.counters().rollouts;
+        if page.step_loops(chunk.min((1234 - loops) as u32)) {
+            moves += 1;
+        }
+        loops += page.counters().rollouts - before;
+        chunk = chunk % 37 + 5;
+    }
+    // The same loops through the benchmark runner: the same moves, and the
+    // episode ends at the same loop if it ended.
+    let mut bench = LoopRunner::new(&cfg, 9).unwrap();
+    bench.run(loops).unwrap();
+    let ended = u64::from(page.status() != Status::Running);
+    assert_eq!((bench.moves, bench.episodes), (moves, ended));
+    assert!(moves > 10, "{moves} moves");
+}

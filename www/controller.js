@@ -1,17 +1,15 @@
-// The playback state machine. It owns the requestAnimationFrame loop: each
-// frame gives the engine a bounded work budget (loops in chunks, checking
-// performance.now()), then asks the page to draw. It holds no game logic.
+// The playback state machine. It owns the requestAnimationFrame loop. The
+// search itself runs in a worker (www/search-worker.js, reached through
+// www/search-session.js): each frame the controller draws the latest frame
+// the worker sent and asks for the next one, so the page's thread only draws
+// and never blocks on the search. It holds no game logic.
 //
 // States: idle | running | paused | found | capped | error, mirrored to
 // document.body.dataset.state for tests.
 //
-// A "run" (www/engine.js) is one episode handle; race mode has two. The
-// controller only calls:
-//   run.stepLoops(k) -> number of real moves made (0 or more)
-//   run.stepMove()
-//   run.status()     -> 'running' | 'found' | 'capped'
-//   run.loopsDone()  -> loops executed so far (a counter)
-//   run.rolloutSteps() -> rollout lattice steps so far (a counter)
+// A run is a RunView (www/search-session.js); race mode has two. The
+// controller reads run.status(), run.loopsDone(), run.rolloutSteps() and
+// feeds run.apply(frame).
 
 export const STATES = ['idle', 'running', 'paused', 'found', 'capped', 'error'];
 
@@ -24,32 +22,37 @@ const TRANSITIONS = {
   error: ['idle', 'error'],
 };
 
-/** Default per-frame wasm budget in ms (the frame still has to draw). */
-export const FRAME_BUDGET_MS = 8;
-
 export class Controller {
   /**
    * @param {object} o
-   * @param {() => object[]} o.createRuns   builds fresh runs from the current config
-   * @param {(info) => void} o.draw          draws the runs (called once per frame)
+   * @param {object} o.session              a SearchSession (or a stand-in with reset/request/current)
+   * @param {() => object} o.spec            the reset request for the current config: { runs: [{ core, label }], seed }
+   * @param {(runs) => object[]} o.views     the frame request for each run (layers, what the page holds)
+   * @param {(runs) => void} [o.onRuns]      called with fresh runs, before their first frame is drawn
+   * @param {(info) => void} o.draw          draws the runs (called once per frame that has news)
    * @param {(state, prev) => void} [o.onState]
    * @param {(err) => void} [o.onError]
-   * @param {() => number} [o.now]           clock in ms
+   * @param {(fn) => number} [o.raf]          requestAnimationFrame
    */
-  constructor({ createRuns, draw, onState = () => {}, onError = () => {}, now = () => performance.now() }) {
-    this.createRuns = createRuns;
+  constructor({ session, spec, views, onRuns = () => {}, draw, onState = () => {}, onError = () => {}, raf = null }) {
+    this.session = session;
+    this.spec = spec;
+    this.views = views;
+    this.onRuns = onRuns;
     this.drawFn = draw;
     this.onState = onState;
     this.onError = onError;
-    this.now = now;
+    this.raf = raf ?? (typeof requestAnimationFrame !== 'undefined' ? (fn) => requestAnimationFrame(fn) : null);
     this.runs = [];
     this.state = 'idle';
     this.speed = 10; // loops per frame, or 'max'
-    this.budgetMs = FRAME_BUDGET_MS;
-    this.loopMs = 0.05; // measured cost of one loop (ms), sizes the chunks
     this.rafId = 0;
     this.dirty = true;
-    this.meter = { frames: [], loops: [], steps: [], fps: 0, loopsPerS: 0, stepsPerS: 0, workMs: 0 };
+    this.wantFrame = false;
+    this.inflight = false;
+    this.resets = 0;
+    this.ready = Promise.resolve(false);
+    this.meter = { frames: [], loops: [], steps: [], fps: 0, loopsPerS: 0, stepsPerS: 0 };
     this.frame = this.frame.bind(this);
     this.setState('idle');
   }
@@ -65,38 +68,67 @@ export class Controller {
     this.dirty = true;
   }
 
-  /** Wraps engine calls: any exception (a wasm panic too) puts the page in `error`. */
-  guard(fn) {
-    try {
-      return fn();
-    } catch (err) {
-      this.fail(err);
-      return undefined;
-    }
-  }
-
   fail(err) {
     this.runs = [];
     if (this.state !== 'error') this.setState('error');
+    this.session.request('pause').catch(() => {});
     this.onError(err);
     this.requestDraw();
   }
 
-  /** (Re)builds the runs from the config; autoplay starts them. */
-  reset({ autoplay = false } = {}) {
-    for (const r of this.runs) r.free?.();
+  /** Sends a request to the worker; a failure puts the page in `error` and resolves to null. */
+  async send(type, payload = {}) {
+    const runs = this.runs;
+    try {
+      return await this.session.request(type, payload);
+    } catch (err) {
+      // A stale request's failure does not concern the current runs, unless the engine trapped.
+      if (runs === this.runs || err.trap) this.fail(err);
+      return null;
+    }
+  }
+
+  /**
+   * (Re)builds the runs from the config; autoplay starts them. Resolves to
+   * true once the fresh runs have their first frame (false if it failed or a
+   * newer reset overtook it).
+   */
+  reset(opts) {
+    this.ready = this.resetNow(opts);
+    return this.ready;
+  }
+
+  /** Resolves once the newest reset has finished (tests and tools wait on it). */
+  async whenReady() {
+    let p;
+    do {
+      p = this.ready;
+      await p;
+    } while (p !== this.ready);
+    return this.runs.length > 0;
+  }
+
+  async resetNow({ autoplay = false } = {}) {
+    const ticket = ++this.resets;
     this.runs = [];
     if (this.state !== 'idle') this.setState('idle');
-    const runs = this.guard(() => this.createRuns());
-    if (!runs) return false;
+    let runs;
+    try {
+      runs = await this.session.reset(this.spec());
+    } catch (err) {
+      if (ticket === this.resets) this.fail(err);
+      return false;
+    }
+    if (!runs || ticket !== this.resets) return false;
     this.runs = runs;
     this.meter.frames = [];
     this.meter.loops = [];
     this.meter.steps = [];
+    this.onRuns(runs);
+    if (!(await this.refresh())) return false;
     this.settle();
     if (autoplay && this.isLive()) this.play();
-    this.requestDraw();
-    return true;
+    return ticket === this.resets;
   }
 
   isLive() {
@@ -106,11 +138,17 @@ export class Controller {
   play() {
     if (!this.isLive() || !this.runs.length) return;
     this.setState('running');
+    this.send('play', { speed: this.speed });
     this.requestDraw();
   }
 
   pause() {
-    if (this.state === 'running' || this.state === 'idle') this.setState('paused');
+    if (this.state === 'running' || this.state === 'idle') {
+      this.setState('paused');
+      this.send('pause');
+      // The worker may have searched on since the last frame: show where it stopped.
+      this.requestDraw();
+    }
   }
 
   toggle() {
@@ -122,93 +160,88 @@ export class Controller {
 
   /** One MCTS loop (selection, rollout, backpropagation) on each unfinished run. */
   stepLoop() {
-    if (!this.isLive()) return;
-    this.pause();
-    this.guard(() => {
-      for (const r of this.runs) if (r.status() === 'running') r.stepLoops(1);
-    });
-    this.settle();
-    this.requestDraw();
+    return this.step('stepLoop');
   }
 
   /** Finishes the current decision and makes the real move, on each unfinished run. */
   stepMove() {
-    if (!this.isLive()) return;
+    return this.step('stepMove');
+  }
+
+  async step(type) {
+    if (!this.isLive() || !this.runs.length) return;
     this.pause();
-    this.guard(() => {
-      for (const r of this.runs) if (r.status() === 'running') r.stepMove();
-    });
-    this.settle();
-    this.requestDraw();
+    const runs = this.runs;
+    const answer = await this.send(type, { views: this.views(runs) });
+    this.take(answer, runs);
   }
 
   setSpeed(speed) {
     this.speed = speed;
+    this.send('speed', { speed });
+  }
+
+  /** Applies a frame answer if it is for the current runs; true if applied. */
+  take(answer, runs) {
+    if (!answer || runs !== this.runs || !this.session.current(answer)) return false;
+    answer.frames.forEach((f, i) => runs[i].apply(f));
+    this.settle();
+    this.dirty = true;
+    this.schedule();
+    return true;
+  }
+
+  /** Asks for a fresh frame now (no search at a set speed beyond the usual). */
+  async refresh() {
+    const runs = this.runs;
+    if (!runs.length) return false;
+    const answer = await this.send('frame', { views: this.views(runs) });
+    return this.take(answer, runs);
   }
 
   /** Moves to found/capped once every run is done. */
   settle() {
     if (!this.isLive() || !this.runs.length) return;
-    const st = this.guard(() => this.runs.map((r) => r.status()));
-    if (!st) return;
+    const st = this.runs.map((r) => r.status());
     if (st.every((s) => s !== 'running')) {
       // The first run is the main one; in a race the state follows it.
       this.setState(st[0] === 'capped' ? 'capped' : 'found');
     }
   }
 
+  /** Redraws, with a fresh frame from the worker (layer choices may have changed). */
   requestDraw() {
     this.dirty = true;
-    if (!this.rafId && typeof requestAnimationFrame !== 'undefined') this.rafId = requestAnimationFrame(this.frame);
+    this.wantFrame = true;
+    this.schedule();
   }
 
-  /**
-   * Runs engine work for at most about budgetMs; returns loops done. Loops
-   * are issued in chunks sized from the measured cost per loop so that one
-   * chunk takes about a millisecond (a loop's rollout length varies a lot,
-   * but the rollout cap bounds it), and never more than the time left.
-   */
-  work() {
-    const t0 = this.now();
-    const deadline = t0 + this.budgetMs;
-    const max = this.speed === 'max';
-    let remaining = max ? Infinity : this.speed;
-    let loops = 0;
-    while (remaining > 0) {
-      const active = this.runs.filter((r) => r.status() === 'running');
-      if (!active.length) break;
-      const left = deadline - this.now();
-      if (left <= 0) break;
-      const perLoop = this.loopMs * active.length;
-      const fit = Math.floor(Math.min(1, left) / Math.max(perLoop, 1e-4));
-      const k = Math.max(1, Math.min(remaining, fit, 1 << 14));
-      const c0 = this.now();
-      for (const r of active) r.stepLoops(k);
-      const dt = this.now() - c0;
-      // Exponential average of ms per loop per run (chunks of 1 are noisy).
-      this.loopMs = 0.7 * this.loopMs + 0.3 * (dt / k / active.length);
-      loops += k;
-      remaining -= k;
-    }
-    this.meter.workMs = this.now() - t0;
-    return loops;
+  schedule() {
+    if (!this.rafId && this.raf) this.rafId = this.raf(this.frame);
   }
 
+  /** One animation frame: ask for the next frame of the search, and draw what has arrived. */
   frame(ts) {
     this.rafId = 0;
     const running = this.state === 'running';
-    if (running) {
-      this.guard(() => this.work());
-      this.settle();
+    if ((running || this.wantFrame) && !this.inflight && this.runs.length) {
+      this.wantFrame = false;
+      this.inflight = true;
+      this.refresh().finally(() => {
+        this.inflight = false;
+        if (this.wantFrame) this.schedule();
+      });
     }
-    if (running || this.dirty) {
+    if (this.dirty) {
       this.dirty = false;
       this.measure(ts);
-      // The draw callback makes its own wasm calls first and only then builds
-      // typed-array views (memory growth detaches old views).
-      this.guard(() => this.drawFn({ state: this.state, meter: this.meter }));
+      try {
+        this.drawFn({ state: this.state, meter: this.meter });
+      } catch (err) {
+        this.fail(err);
+      }
     }
-    if (this.state === 'running') this.rafId = requestAnimationFrame(this.frame);
+    if (this.state === 'running') this.schedule();
   }
 
   measure(ts) {

@@ -1,16 +1,36 @@
-// The page's only door into the wasm engine (www/pkg, built from src/wasm.rs).
-// It translates the URL-level config (www/url-state.js) into the core's
-// Config object, wraps one episode handle per run, and reads the engine's
-// buffers zero-copy. No game logic lives here.
+// The door into the wasm engine (www/pkg, built from src/wasm.rs). It is
+// loaded twice: by the page, for small helpers (palettes, config checks,
+// batch summaries), and by the search worker (www/search-worker.js), which
+// holds the episodes. It translates the URL-level config (www/url-state.js)
+// into the core's Config object and wraps one episode handle per run. No game
+// logic lives here.
 
 import init, * as wasm from './pkg/torus_search.js';
 
 let exports = null;
+let compiled = null;
 
-/** Loads and instantiates the wasm module once; resolves to the module namespace. */
-export async function loadEngine() {
-  if (!exports) exports = await init();
+/**
+ * Loads and instantiates the wasm module once; resolves to the module namespace.
+ * `module`: an already compiled WebAssembly.Module (the page hands its own to
+ * the search worker, so the bytes are fetched and compiled once).
+ */
+export async function loadEngine(module = null) {
+  if (exports) return wasm;
+  if (!module) {
+    const url = new URL('./pkg/torus_search_bg.wasm', import.meta.url);
+    const res = await fetch(url);
+    if (!res.ok) throw new Error(`${url.pathname}: HTTP ${res.status}`);
+    module = await WebAssembly.compile(await res.arrayBuffer());
+  }
+  compiled = module;
+  exports = await init({ module_or_path: module });
   return wasm;
+}
+
+/** The compiled module (after loadEngine), to share with workers. */
+export function engineModule() {
+  return compiled;
 }
 
 /** The wasm memory's current buffer (re-read it after any wasm call: growth detaches it). */
@@ -144,63 +164,95 @@ export class Run {
   }
 
   /**
-   * All wasm calls a frame needs, returning only numbers (pointers, lengths
-   * and stats). Call views() afterwards, once per frame, for typed arrays.
-   * layers: [{ name, palette, scale, alphaLo, alphaHi }]
+   * Everything the page needs to draw this run, copied out of wasm memory
+   * (the page's thread cannot see this worker's memory). Each view over wasm
+   * memory is built right after the call that produced it and copied before
+   * the next call, because memory growth detaches views.
+   *
+   * req = { layers: [{ name, palette, scale, alphaLo, alphaHi, dep }],
+   *         have: { [name]: key } (renderings the page already holds),
+   *         pathHave: path entries the page already holds, traces: bool }
+   * Buffers to transfer (not clone) are pushed onto `transfer`.
    */
-  snapshot(layers, { traces = false } = {}) {
+  frame(req, transfer) {
     const h = this.h;
+    const n2 = this.n * this.n;
+    const steps = h.steps();
+    const rollouts = h.rolloutsTotal();
     const out = {
-      n: this.n,
       status: h.status(),
-      steps: h.steps(),
-      optimal: this.optimalSteps,
-      target: this.targetCell,
-      start: this.startCell,
+      steps,
       position: h.position(),
-      pathPtr: h.pathPtr(),
-      pathLen: h.pathLen(),
       loopsDone: h.loopsDone(),
-      rollouts: h.rolloutsTotal(),
+      loopsTotal: this.loopsDone(),
+      rollouts,
       rolloutSteps: h.rolloutStepsTotal(),
       truncated: h.truncatedTotal(),
       decisionRollouts: h.decisionRollouts(),
       decisionRolloutSteps: h.decisionRolloutSteps(),
+      decision: this.isMcts ? h.decision() : null,
+      pathFrom: 0,
+      path: null,
       layers: [],
-      traceCount: 0,
+      traces: null,
+      practice: -1,
     };
-    for (const l of layers) {
+    const len = h.pathLen();
+    out.pathFrom = req.pathHave <= len ? req.pathHave : 0;
+    out.path = new Uint32Array(memoryBuffer(), h.pathPtr(), len).slice(out.pathFrom);
+    transfer.push(out.path.buffer);
+    // On big lattices the per-loop layers are recoloured at most ~8 times a
+    // second (a million cells each); the worker keeps its time for the search.
+    const slow = n2 > 1 << 17 ? Math.floor(performance.now() / 120) : rollouts;
+    for (const l of req.layers) {
+      const dep = l.dep === 'static' ? '' : l.dep === 'steps' ? steps : `${steps}:${slow}`;
+      const key = `${this.serial}:${l.name}:${l.palette}|${l.scale}|${l.alphaLo}|${l.alphaHi}|${dep}`;
+      if (req.have?.[l.name] === key) {
+        out.layers.push({ name: l.name, key, same: true });
+        continue;
+      }
       const ptr = h.renderLayer(l.name, l.palette, l.scale, l.alphaLo, l.alphaHi);
-      out.layers.push({ ...l, ptr, max: h.layerMax(), min: h.layerMin(), sum: h.layerSum() });
+      if (!ptr) continue;
+      const rgba = new Uint8ClampedArray(memoryBuffer(), ptr, 4 * n2).slice();
+      transfer.push(rgba.buffer);
+      out.layers.push({ name: l.name, key, rgba, max: h.layerMax(), min: h.layerMin(), sum: h.layerSum() });
     }
-    if (this.isMcts) out.decision = h.decision();
-    if (traces) {
-      out.traceCount = h.collectTraces();
-      out.traceCellsPtr = h.traceCellsPtr();
-      out.traceOffsetsPtr = h.traceOffsetsPtr();
-      out.traceTargetsPtr = h.traceTargetsPtr();
+    if (req.traces && this.isMcts) {
+      const count = h.collectTraces();
+      if (count > 0) {
+        const offsPtr = h.traceOffsetsPtr();
+        const cellsPtr = h.traceCellsPtr();
+        const targetsPtr = h.traceTargetsPtr();
+        const buf = memoryBuffer();
+        const offs = new Uint32Array(buf, offsPtr, count + 1);
+        const cells = new Uint32Array(buf, cellsPtr, offs[count]);
+        out.practice = new Uint32Array(buf, targetsPtr, count)[0];
+        // Oldest first, so the newest is drawn on top.
+        out.traces = [];
+        for (let i = count - 1; i >= 0; i--) out.traces.push(cells.slice(offs[i], offs[i + 1]));
+        for (const t of out.traces) transfer.push(t.buffer);
+      }
     }
     return out;
   }
-}
 
-/** Typed-array views for a snapshot; valid until the next wasm call. */
-export function views(snap) {
-  const buf = memoryBuffer();
-  const n2 = snap.n * snap.n;
-  const v = {
-    path: new Uint32Array(buf, snap.pathPtr, snap.pathLen),
-    layers: snap.layers.map((l) => (l.ptr ? { ...l, rgba: new Uint8ClampedArray(buf, l.ptr, 4 * n2) } : null)),
-    traces: [],
-    practice: -1,
-  };
-  if (snap.traceCount > 0) {
-    const offs = new Uint32Array(buf, snap.traceOffsetsPtr, snap.traceCount + 1);
-    const cells = new Uint32Array(buf, snap.traceCellsPtr, offs[snap.traceCount]);
-    const targets = new Uint32Array(buf, snap.traceTargetsPtr, snap.traceCount);
-    // Oldest first, so the newest is drawn on top.
-    for (let i = snap.traceCount - 1; i >= 0; i--) v.traces.push(cells.subarray(offs[i], offs[i + 1]));
-    v.practice = targets[0];
+  /** What the page's run view needs once, when the run is created. */
+  describe() {
+    return {
+      label: this.label,
+      core: this.core,
+      isMcts: this.isMcts,
+      n: this.n,
+      startCell: this.startCell,
+      targetCell: this.targetCell,
+      optimalSteps: this.optimalSteps,
+      seed: String(this.h.seed()),
+      serial: this.serial,
+    };
   }
-  return v;
+
+  /** The episode for export: the engine's config and result, and the whole path. */
+  exportData() {
+    return { label: this.label, core_config: this.h.config(), path: this.path(), result: this.h.result(), status: this.status() };
+  }
 }

@@ -1,8 +1,10 @@
 // Wires the page: controls <-> URL config, the controller's frame loop, the
 // renderers, the stats / decision / legend panels, race mode, export/import.
-// No game logic: every number shown comes from the wasm engine.
+// No game logic: every number shown comes from the wasm engine, which runs
+// the search in a worker (www/search-worker.js).
 
-import { loadEngine, Run, views, coreConfig, RACE, describeError } from './engine.js';
+import { loadEngine, engineModule, coreConfig, RACE, describeError } from './engine.js';
+import { SearchSession } from './search-session.js';
 import { parseParams, parseValue, serializeConfig, defaults, describeSearcher, encodePaint, decodePaint, SPECS } from './url-state.js';
 import { Renderer, drawColorbar, drawNotice, MOVE_NAMES } from './renderer.js';
 import { Controller } from './controller.js';
@@ -33,12 +35,14 @@ const page = {
   runTime: 0, // seconds spent running (for the chart)
   lastTs: 0,
   luts: {},
-  layerCache: [new Map(), new Map()],
   replay: null, // { path, speed } while an imported episode replays
   legendKey: '',
   keepTraces: 1,
   trapped: false,
+  panelsTs: 0, // when the text panels were last updated
 };
+/** Least time between text-panel updates while running (ms). */
+const PANEL_MS = 100;
 window.torusPage = page; // for tests and the console
 page.WorkerPool = WorkerPool;
 
@@ -68,29 +72,23 @@ function keepTraces() {
   return $('layer-practice').checked ? 1 : 0;
 }
 
-function createRuns() {
+/** The worker's reset request for the current config (race mode adds a second run). */
+function resetSpec() {
   const cfg = page.config;
   const weights = weightsFromPaint();
   page.keepTraces = keepTraces();
-  const runs = [new Run(coreConfig(cfg, { weights, keepTraces: page.keepTraces }), cfg.seed, describeSearcher(cfg))];
+  const runs = [{ core: coreConfig(cfg, { weights, keepTraces: page.keepTraces }), label: describeSearcher(cfg) }];
   if (cfg.race && RACE[cfg.race]) {
     const override = RACE[cfg.race];
-    const label = describeSearcher({ ...cfg, ...override });
-    runs.push(new Run(coreConfig(cfg, { weights, keepTraces: page.keepTraces, override }), cfg.seed, label));
-    // A walker racing MCTS moves in step with it (one real move each), so the
-    // boards compare paths rather than compute; once MCTS is done it runs free.
-    const [a, b] = runs;
-    const pace = (walker, mcts) => {
-      walker.pacer = () => (mcts.status() === 'running' ? mcts.h.steps() : Infinity);
-    };
-    if (a.isMcts && !b.isMcts) pace(b, a);
-    else if (!a.isMcts && b.isMcts) pace(a, b);
+    runs.push({ core: coreConfig(cfg, { weights, keepTraces: page.keepTraces, override }), label: describeSearcher({ ...cfg, ...override }) });
   }
-  page.layerCache = [new Map(), new Map()];
+  return { runs, seed: String(cfg.seed) };
+}
+
+function onRuns(runs) {
   page.runTime = 0;
   page.chart?.reset(runs.map((r, i) => (runs.length > 1 ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : r.label)));
   setupBoards(runs);
-  return runs;
 }
 
 function setupBoards(runs) {
@@ -107,7 +105,8 @@ function setupBoards(runs) {
 /** Restarts the run(s) from the current config (same seed). */
 function restart({ autoplay } = {}) {
   if (page.trapped) {
-    // After a wasm trap the module's state cannot be trusted: reload.
+    // A trap in the page's own wasm instance (not the search worker's, which
+    // is replaced at the next reset) leaves it untrustworthy: reload.
     location.reload();
     return;
   }
@@ -255,10 +254,7 @@ function bindControls() {
   // View options: redraw only; trace count changes need a fresh run.
   for (const def of LAYER_DEFS) $(def.id).addEventListener('change', () => page.controller.requestDraw());
   for (const id of ['layer-path', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows']) {
-    $(id).addEventListener('change', () => {
-      page.layerCache = [new Map(), new Map()];
-      page.controller.requestDraw();
-    });
+    $(id).addEventListener('change', () => page.controller.requestDraw());
   }
   for (const id of ['layer-rollouts', 'rollout-k', 'layer-practice']) {
     $(id).addEventListener('change', () => {
@@ -425,7 +421,7 @@ function previewPaint() {
 
 // ------------------------------------------------------------------- draw
 
-function layerSpecs(run, ri) {
+function layerSpecs(run) {
   const log = $('log-scale').checked;
   const specs = [];
   for (const def of LAYER_DEFS) {
@@ -434,34 +430,13 @@ function layerSpecs(run, ri) {
     if (def.name === 'visits' && !run.isMcts && run.core.searcher !== 'nsarw') continue;
     specs.push({ ...def, scale: def.counts ? (log ? 'log' : 'stretch') : 'linear' });
   }
-  // Reuse a cached rendering when nothing it depends on has changed.
-  return specs.map((s) => ({ ...s, ri }));
+  return specs;
 }
 
-function snapshotRun(run, ri) {
-  const specs = layerSpecs(run, ri);
-  const cache = page.layerCache[ri];
-  const steps = run.h.steps();
-  const rollouts = run.h.rolloutsTotal();
-  const fresh = [];
-  const reuse = [];
-  // On big lattices the per-loop layers are recoloured at most ~8 times a
-  // second (a million cells each); the frame keeps its budget for the search.
-  const slow = run.n * run.n > 1 << 17 ? Math.floor(performance.now() / 120) : rollouts;
-  for (const s of specs) {
-    const key = `${s.palette}|${s.scale}|${s.dep === 'static' ? '' : s.dep === 'steps' ? steps : `${steps}:${slow}`}`;
-    const hit = cache.get(s.name);
-    if (hit && hit.key === key) reuse.push({ ...hit.layer });
-    else fresh.push({ ...s, key });
-  }
+/** What each run's next frame from the worker must carry. */
+function frameViews(runs) {
   const traces = $('layer-rollouts').checked || $('layer-practice').checked;
-  const snap = run.snapshot(fresh, { traces: traces && run.isMcts });
-  for (const l of snap.layers) cache.set(l.name, { key: l.key, layer: { ...l, key: `${run.serial}:${l.name}:${l.key}` } });
-  snap.layers = snap.layers.map((l) => cache.get(l.name).layer);
-  // Keep the bottom-to-top order.
-  const byName = new Map([...reuse, ...snap.layers].map((l) => [l.name, l]));
-  snap.layers = specs.map((s) => byName.get(s.name)).filter(Boolean);
-  return snap;
+  return runs.map((r, i) => r.request(layerSpecs(r, i), traces && r.isMcts));
 }
 
 function draw(info) {
@@ -470,39 +445,52 @@ function draw(info) {
   if (info.state === 'running' && page.lastTs) page.runTime += Math.min(0.25, (ts - page.lastTs) / 1000);
   page.lastTs = info.state === 'running' ? ts : 0;
   if (!runs.length) return;
-  // 1. Every wasm call of the frame.
-  const snaps = runs.map((r, i) => snapshotRun(r, i));
-  // 2. Views over wasm memory, then drawing (no wasm calls in between).
   const reveal = $('reveal').checked;
+  const snaps = runs.map((run, i) => {
+    // Bottom to top, as chosen now; a layer just switched on appears with the next frame.
+    const layers = layerSpecs(run, i)
+      .map((spec) => {
+        const got = run.layers.get(spec.name);
+        return got ? { ...spec, ...got } : null;
+      })
+      .filter(Boolean);
+    return { ...run.snap, n: run.n, optimal: run.optimalSteps, target: run.targetCell, start: run.startCell, pathLen: run.pathLen, layers };
+  });
   snaps.forEach((snap, i) => {
-    const v = views(snap);
-    const layers = v.layers;
+    const run = runs[i];
+    const layers = snap.layers.slice();
     if (page.painting && i === 0) {
-      const idx = snap.layers.findIndex((l) => l.name === 'prior');
+      const idx = layers.findIndex((l) => l.name === 'prior');
       const rgba = new Uint8ClampedArray(page.painting.buffer, page.painting.byteOffset, page.painting.length);
+      // A preview changes every stroke: never reuse an upload for it (no key).
       if (idx >= 0) layers[idx] = { rgba };
       else layers.unshift({ rgba });
-      // A preview changes every stroke: never reuse an upload for it.
     }
     const found = snap.status === 'found';
     page.renderers[i].draw({
       n: snap.n,
       layers,
-      path: $('layer-path').checked ? v.path : null,
+      path: $('layer-path').checked ? run.pathView() : null,
       pathLen: snap.pathLen,
       start: snap.start,
       position: snap.position,
       target: snap.target,
       showTarget: found || reveal,
-      rv: runs[i].core.rv,
-      rollouts: $('layer-rollouts').checked ? v.traces : [],
-      practice: $('layer-practice').checked && snap.status === 'running' ? v.practice : -1,
+      rv: run.core.rv,
+      rollouts: $('layer-rollouts').checked ? run.traces : [],
+      practice: $('layer-practice').checked && snap.status === 'running' ? run.practice : -1,
       decision: $('layer-arrows').checked && snap.decision && snap.status === 'running' ? arrowData(snap.decision) : null,
       grid: $('layer-grid').checked,
       tiling: $('tiling').checked,
     });
   });
-  updatePanels(snaps, runs, info);
+  // Text panels and the chart change ~10 times a second while running: more
+  // is unreadable, and each change costs the page's thread style, layout and
+  // paint work that the canvas needs for 60 fps.
+  if (info.state !== 'running' || ts - page.panelsTs >= PANEL_MS) {
+    page.panelsTs = ts;
+    updatePanels(snaps, runs, info);
+  }
 }
 
 function arrowData(d) {
@@ -523,7 +511,8 @@ function leading(d) {
 
 // ----------------------------------------------------------------- panels
 
-const fmtInt = (v) => Math.round(v).toLocaleString('en-US');
+const INT_FORMAT = new Intl.NumberFormat('en-US', { maximumFractionDigits: 0 });
+const fmtInt = (v) => INT_FORMAT.format(Math.round(v));
 function fmtRate(v) {
   if (v >= 1e9) return `${(v / 1e9).toFixed(2)} G`;
   if (v >= 1e6) return `${(v / 1e6).toFixed(2)} M`;
@@ -775,15 +764,10 @@ function exportPng() {
   out.toBlob((blob) => blob && download(blob, `${baseName()}.png`), 'image/png');
 }
 
-function episodeJson() {
-  const runs = page.controller.runs;
-  const one = (r) => ({
-    label: r.label,
-    core_config: r.h.config(),
-    path: r.path(),
-    result: r.h.result(),
-    status: r.status(),
-  });
+async function episodeJson() {
+  const answer = await page.controller.send('export');
+  if (!answer) throw new Error('the engine is not available');
+  const [main, race] = answer.runs;
   return {
     format: 'torus-search-episode',
     version: 1,
@@ -791,14 +775,21 @@ function episodeJson() {
     url_query: serializeConfig(page.config, { full: true }),
     seed: String(page.config.seed),
     cells: 'path entries are 0-based cell indices y*n + x; users see (x+1, y+1)',
-    episode: one(runs[0]),
-    race: runs[1] ? one(runs[1]) : null,
+    episode: main,
+    race: race ?? null,
   };
 }
 
-function exportJson() {
+async function exportJson() {
   if (!page.controller.runs.length) return;
-  const text = JSON.stringify(episodeJson(), null, 1);
+  let data;
+  try {
+    data = await episodeJson();
+  } catch (err) {
+    showMessage(`Could not export: ${err.message}`);
+    return;
+  }
+  const text = JSON.stringify(data, null, 1);
   download(new Blob([text], { type: 'application/json' }), `${baseName()}.json`);
 }
 
@@ -939,8 +930,12 @@ async function boot() {
   ro.observe($('view-0'));
   ro.observe($('view-1'));
   page.chart = new StepsChart($('chart'));
+  page.session = new SearchSession(engineModule());
   page.controller = new Controller({
-    createRuns,
+    session: page.session,
+    spec: resetSpec,
+    views: frameViews,
+    onRuns,
     draw,
     onState: (s, prev) => {
       setText('state-badge', s);
@@ -948,6 +943,8 @@ async function boot() {
       if (page.controller) onState(s, prev);
     },
     onError: (err) => {
+      // A trap in the search worker is handled by the session (a fresh worker
+      // at the next reset); one in the page's own instance needs a reload.
       page.trapped = err instanceof WebAssembly.RuntimeError;
       showMessage(describeError(err));
       setText('state-badge', 'error');

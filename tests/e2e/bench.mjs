@@ -3,15 +3,19 @@
 //   fps_n256              frames/s at N=256 with the prior + visit-count
 //                         heatmaps and the path drawn while MCTS runs
 //   longest_task_ms_n256  the longest main-thread task meanwhile (PerformanceObserver 'longtask')
-//   page_loops_per_s_*    MCTS loops/s in the page (frame loop, drawing on)
-//   wasm_loops_per_s_*    MCTS loops in one wasm call (no frame loop), same configs
+//   page_loops_per_s_*    MCTS loops/s in the page (search worker, drawing on)
+//   page_loop_window_*    which loops of the episode the page ran meanwhile
+//   wasm_loops_per_s_*    MCTS loops in one wasm call on the page's thread, same configs
 //   wasm_rw_steps_per_s   RW rollout lattice steps/s in wasm (N=40, r_v=1)
-//   native_*              the same workloads natively, with --native (runs
-//                         `target/release/torus-search bench --json`)
+//   native_*              with --native: `target/release/torus-search bench --json`
+//                         (the suite), and the very loops the page ran, timed
+//                         natively (`bench --episode CONFIG --loops FROM..TO`);
+//                         page_over_native_* divides the two
 // Usage: node tests/e2e/bench.mjs [--native] [--seconds S]
 // Needs `make build` (www/pkg) first.
 import { execFileSync } from 'node:child_process';
-import { existsSync } from 'node:fs';
+import { existsSync, mkdtempSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { ROOT, launchBrowser, openPage, startServer } from './harness.mjs';
 
@@ -49,6 +53,8 @@ async function measurePage(context, url, { untick = [] } = {}) {
         if (el.checked) el.click();
       }, id);
     }
+    // Unticking a trace layer restarts the run (traces are kept from the start).
+    await page.waitForFunction(() => window.torusPage.controller.runs.length, null, { timeout: 60_000 });
     await page.evaluate(() => {
       const c = window.torusPage.controller;
       c.setSpeed('max');
@@ -61,6 +67,8 @@ async function measurePage(context, url, { untick = [] } = {}) {
         t: performance.now(),
         frames: window.__bench.frames,
         loops: c.runs.reduce((a, r) => a + r.loopsDone(), 0),
+        core: c.runs[0].core,
+        seed: c.runs[0].seed,
         steps: c.runs.reduce((a, r) => a + r.rolloutSteps(), 0),
         state: c.state,
         longest: window.__bench.longest,
@@ -92,6 +100,9 @@ async function measurePage(context, url, { untick = [] } = {}) {
       longest_task_ms: b.longest,
       long_tasks: b.longTasks,
       state_at_end: b.state,
+      window: [a.loops, b.loops],
+      core: a.core,
+      seed: a.seed,
     };
   } finally {
     await page.close();
@@ -130,15 +141,26 @@ async function measureWasm(context, url) {
   }
 }
 
+const BIN = path.join(ROOT, 'target', 'release', 'torus-search');
+
 function native() {
-  const bin = path.join(ROOT, 'target', 'release', 'torus-search');
-  if (!existsSync(bin)) return { native_error: 'build it first: cargo build --release' };
+  if (!existsSync(BIN)) return { native_error: 'build it first: cargo build --release' };
   try {
-    const out = JSON.parse(execFileSync(bin, ['bench', '--json'], { encoding: 'utf8', timeout: 600_000 }));
+    const out = JSON.parse(execFileSync(BIN, ['bench', '--json'], { encoding: 'utf8', timeout: 600_000 }));
     return { native: out };
   } catch (err) {
     return { native_error: String(err.message).split('\n')[0] };
   }
+}
+
+/** Times natively the loops the page ran (same config, seed and loop numbers). */
+function nativeWindow(m) {
+  if (!existsSync(BIN)) return null;
+  const dir = mkdtempSync(path.join(tmpdir(), 'torus-bench-'));
+  const file = path.join(dir, 'core.json');
+  writeFileSync(file, JSON.stringify(m.core));
+  const args = ['bench', '--json', '--episode', file, '--loops', `${m.window[0]}..${m.window[1]}`, '--seed', m.seed];
+  return JSON.parse(execFileSync(BIN, args, { encoding: 'utf8', timeout: 600_000 })).loops_per_s;
 }
 
 const server = await startServer(ROOT);
@@ -163,6 +185,16 @@ try {
   result.longest_task_ms_n100 = mid.longest_task_ms;
   Object.assign(result, await measureWasm(browser.context, `${server.url}?autoplay=0`));
   result.page_over_wasm_loops_n100 = +(result.page_loops_per_s_n100_sigma15 / result.wasm_loops_per_s_n100_sigma15).toFixed(3);
+  result.page_loop_window_n256 = big.window;
+  result.page_loop_window_n100 = mid.window;
+  if (wantNative) {
+    for (const [tag, m] of [['n256', big], ['n100_sigma15', mid]]) {
+      const lps = nativeWindow(m);
+      if (lps === null) continue;
+      result[`native_window_loops_per_s_${tag}`] = Math.round(lps);
+      result[`page_over_native_${tag}`] = +(m.loops_per_s / lps).toFixed(3);
+    }
+  }
 } finally {
   await browser.close();
   await server.close();

@@ -108,48 +108,104 @@ test('wrap-aware segments never cross the grid', () => {
   }
 });
 
-test('the controller state machine', () => {
+/**
+ * A stand-in for the search worker: one run that is found after `goal`
+ * loops. It answers like SearchSession (reset -> run views; request ->
+ * answers with frames), after a microtask, as the real worker would later.
+ */
+function fakeSession({ goal = 10, failReset = false } = {}) {
+  const s = { loops: 0, gen: 0, playing: false, speed: 10, log: [] };
+  const frame = () => ({
+    status: s.loops >= goal ? 'found' : 'running',
+    loopsTotal: s.loops,
+    rolloutSteps: 3 * s.loops,
+    steps: Math.floor(s.loops / 5),
+  });
+  const view = () => {
+    const v = { snap: frame(), status: () => v.snap.status, loopsDone: () => v.snap.loopsTotal, rolloutSteps: () => v.snap.rolloutSteps };
+    v.apply = (f) => { v.snap = f; };
+    return v;
+  };
+  const work = (k) => { s.loops = Math.min(goal, s.loops + k); };
+  s.reset = async () => {
+    await null;
+    if (failReset) throw new Error('boom');
+    s.gen++;
+    s.loops = 0;
+    return [view()];
+  };
+  s.current = (answer) => answer.gen === s.gen;
+  s.request = async (type, payload = {}) => {
+    await null;
+    s.log.push(type);
+    if (type === 'play') s.playing = true;
+    if (type === 'pause') s.playing = false;
+    if (type === 'speed') s.speed = payload.speed;
+    if (type === 'stepLoop') { s.playing = false; work(1); }
+    if (type === 'stepMove') { s.playing = false; work(5); }
+    if (type === 'frame' && s.playing) work(s.speed === 'max' ? goal : s.speed);
+    if (type === 'panicForTest') {
+      const err = new Error('The engine crashed (wasm panic): test');
+      err.trap = true;
+      throw err;
+    }
+    return { gen: s.gen, frames: [frame()] };
+  };
+  return s;
+}
+
+test('the controller state machine', async () => {
   globalThis.document = { body: { dataset: {} } };
-  let st = 'running';
-  let loops = 0;
-  const run = {
-    status: () => st,
-    stepLoops: (k) => {
-      loops += k;
-      if (loops >= 10) st = 'found';
-      return 0;
-    },
-    stepMove: () => {
-      loops += 5;
-      if (loops >= 10) st = 'found';
-    },
-    loopsDone: () => loops,
-    rolloutSteps: () => 0,
+  const session = fakeSession({ goal: 10 });
+  const frames = [];
+  const raf = (fn) => frames.push(fn);
+  const runFrames = async (k) => {
+    for (let i = 0; i < k && frames.length; i++) {
+      frames.shift()(i * 16);
+      await new Promise((r) => setTimeout(r, 0));
+    }
   };
   const states = [];
-  const c = new Controller({ createRuns: () => [run], draw: () => {}, onState: (s) => states.push(s), now: () => 0 });
-  c.reset({ autoplay: false });
+  let drawn = 0;
+  const c = new Controller({ session, spec: () => ({}), views: (runs) => runs.map(() => ({})), draw: () => drawn++, onState: (s) => states.push(s), raf });
+  assert.equal(await c.reset({ autoplay: false }), true);
   assert.equal(c.state, 'idle');
   assert.equal(document.body.dataset.state, 'idle');
-  c.stepLoop();
+  await c.stepLoop();
   assert.equal(c.state, 'paused');
-  assert.equal(loops, 1);
-  c.stepMove();
-  assert.equal(loops, 6);
+  assert.equal(c.runs[0].loopsDone(), 1);
+  await c.stepMove();
+  assert.equal(c.runs[0].loopsDone(), 6);
+  c.setSpeed(2);
   c.play();
   assert.equal(c.state, 'running');
-  c.setSpeed(4);
-  c.work();
-  assert.equal(loops, 10);
-  c.settle();
+  await runFrames(20);
+  // Two loops per frame until the goal: the run is found and the loop stops.
+  assert.equal(c.runs[0].loopsDone(), 10);
   assert.equal(c.state, 'found');
+  assert.ok(drawn > 0);
+  assert.deepEqual(states.slice(-3), ['paused', 'running', 'found']);
   assert.throws(() => c.setState('running'), /invalid state transition/);
-  // A throwing engine puts the page in `error`.
+  // Stepping a finished run does nothing.
+  await c.stepMove();
+  assert.equal(c.state, 'found');
+  // A reset overtaken by a newer one leaves only the newer runs.
+  const older = c.reset();
+  const newer = c.reset();
+  assert.deepEqual([await older, await newer], [false, true]);
+  assert.equal(c.state, 'idle');
+  // A wasm trap in the worker puts the page in `error` with the message.
   const errs = [];
-  const bad = new Controller({ createRuns: () => { throw new Error('boom'); }, draw: () => {}, onError: (e) => errs.push(e.message) });
-  bad.reset();
+  c.onError = (e) => errs.push(e.message);
+  await c.send('panicForTest', { message: 'x' });
+  assert.equal(c.state, 'error');
+  assert.match(errs[0], /wasm panic/);
+  assert.deepEqual(c.runs, []);
+  // A failing reset (an invalid config) too.
+  const bad = new Controller({ session: fakeSession({ failReset: true }), spec: () => ({}), views: () => [], draw: () => {}, onError: (e) => errs.push(e.message), raf });
+  assert.equal(await bad.reset(), false);
   assert.equal(bad.state, 'error');
-  assert.deepEqual(errs, ['boom']);
+  assert.equal(errs.at(-1), 'boom');
   delete globalThis.document;
 });
 

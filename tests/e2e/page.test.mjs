@@ -30,7 +30,11 @@ async function withApp(query, fn, { allowErrors = false, viewport } = {}) {
   const { page, report } = await openPage(browser.context, `${server.url}${query}`);
   try {
     if (viewport) await page.setViewportSize(viewport);
-    await page.waitForFunction(() => window.torusPage?.controller, null, { timeout: 30_000 });
+    // The runs come from the search worker, a moment after the controller exists.
+    await page.waitForFunction(() => {
+      const c = window.torusPage?.controller;
+      return c && (c.runs.length || c.state === 'error');
+    }, null, { timeout: 30_000 });
     await fn(page, report);
     if (!allowErrors) assert.equal(describeProblems(report), '', 'the page reported problems');
     else assert.deepEqual(report.offOrigin, [], 'requests left the origin');
@@ -154,13 +158,19 @@ test('step loop and step move, by button and keyboard', { timeout: 120_000 }, as
 test('every control changes the run', { timeout: 300_000 }, async () => {
   await withApp('?autoplay=0&n=15&loops=20&seed=5&sigma=3', async (page) => {
     const fingerprint = async () => {
-      await page.evaluate(() => {
+      // A control change restarts the run: wait for the fresh one.
+      await page.evaluate(async () => {
         const c = window.torusPage.controller;
-        for (let i = 0; i < 6 && c.isLive(); i++) c.stepMove();
+        await c.whenReady();
+        for (let i = 0; i < 6 && c.isLive(); i++) await c.stepMove();
       });
       return page.evaluate(() => ({
-        core: window.torusPage.controller.runs.map((r) => ({ ...r.core, seed: String(r.h.seed()) })),
-        path: window.torusPage.controller.runs[0].path(),
+        core: window.torusPage.controller.runs.map((r) => ({ ...r.core, seed: r.seed })),
+        path: (() => {
+          const run = window.torusPage.controller.runs[0];
+          if (!run) throw new Error(`no runs: state ${document.body.dataset.state}, message ${document.getElementById('message').textContent}`);
+          return run.path();
+        })(),
         search: location.search,
         speed: window.torusPage.controller.speed,
       }));
@@ -309,11 +319,8 @@ test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, a
 
 test('a wasm panic shows a readable message and sets state error', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0&n=12', async (page, report) => {
-    await page.evaluate(() => {
-      const run = window.torusPage.controller.runs[0];
-      run.stepLoops = () => window.torusPage.wasm.panicForTest('deliberate test panic');
-      window.torusPage.controller.play();
-    });
+    // The panic happens in the search worker's wasm instance, as a real one would.
+    await page.evaluate(() => window.torusPage.controller.send('panicForTest', { message: 'deliberate test panic' }));
     await waitState(page, 'error', 30_000);
     assert.match(await text(page, '#message'), /wasm panic.*panicForTest: deliberate test panic/);
     assert.ok(report.consoleErrors.some((e) => e.includes('deliberate test panic')), 'the panic hook logs it');
