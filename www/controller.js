@@ -82,8 +82,9 @@ export class Controller {
     try {
       return await this.session.request(type, payload);
     } catch (err) {
-      // A stale request's failure does not concern the current runs, unless the engine trapped.
-      if (runs === this.runs || err.trap) this.fail(err);
+      // A stale request's failure does not concern the current runs, unless
+      // the engine trapped; after a failure, later ones only echo it.
+      if (this.state !== 'error' && (runs === this.runs || err.trap)) this.fail(err);
       return null;
     }
   }

@@ -325,6 +325,11 @@ test('a wasm panic shows a readable message and sets state error', { timeout: 12
     assert.match(await text(page, '#message'), /wasm panic.*panicForTest: deliberate test panic/);
     assert.ok(report.consoleErrors.some((e) => e.includes('deliberate test panic')), 'the panic hook logs it');
     assert.equal(await canvasIsBlank(page, '#view-0'), false);
+    // Restart gets a fresh worker (the trapped instance is dropped) and searches again.
+    await expectText(page, '#play', 'Restart');
+    await page.click('#play');
+    assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
   }, { allowErrors: true });
 });
 
