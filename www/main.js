@@ -630,7 +630,9 @@ function updateDecision(snap, run) {
     setText(tr.cells[0], `${arrows[m]} ${MOVE_NAMES[m]}`);
     // Visits: picks this decision (bar) and N(vᵢ) of the child.
     const td = tr.cells[1];
-    if (!td.firstChild) {
+    // A run without a decision yet (or a walker) left plain text here.
+    if (td.childNodes.length !== 3) {
+      td.replaceChildren();
       td.append(document.createTextNode(''), document.createElement('span'), document.createElement('span'));
       td.childNodes[1].className = 'split';
       td.childNodes[2].className = 'bar';

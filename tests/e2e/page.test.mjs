@@ -130,6 +130,22 @@ test('a URL round-trip reproduces the same path', { timeout: 180_000 }, async ()
   });
 });
 
+test('the decision panel survives switching between a walker and MCTS', { timeout: 120_000 }, async () => {
+  await withApp('?searcher=rw&autoplay=0&n=15&seed=2', async (page) => {
+    await page.click('#step-move');
+    await expectText(page, '#steps', '1');
+    assert.match(await text(page, '#decision-note'), /does not deliberate/);
+    await page.selectOption('#searcher', 'mcts');
+    await page.locator('#searcher').dispatchEvent('change');
+    await page.evaluate(() => window.torusPage.controller.whenReady());
+    await page.click('#step-loop');
+    await expectText(page, '#rollouts', '1 / 1');
+    assert.notEqual(await state(page), 'error', await text(page, '#message'));
+    // Visits, picks and a bar in each row again.
+    assert.equal(await page.locator('#decision tbody tr td:nth-child(2) span.bar').count(), 4);
+  });
+});
+
 test('step loop and step move, by button and keyboard', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0&n=15&loops=20&seed=5', async (page) => {
     assert.equal(await state(page), 'idle');
