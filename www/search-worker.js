@@ -13,6 +13,7 @@
 //   frame  { views: [req per run] }    (at a set speed: that many loops first) answers { frames }
 //   stepLoop / stepMove { views }      one loop / one move on each unfinished run; answers { frames }
 //   export                             answers { runs: [exportData()] }
+//   benchLoops { config, seed, loops } answers { loops, ms }: one timed wasm call
 //   usage                              answers { usage: { wallMs, workMs, frameMs, frames } } since the last call
 //   panicForTest { message }           a deliberate wasm panic (the page's error path is tested with it)
 // Every answer to a reset or later carries the run generation `gen`, so the
@@ -190,6 +191,12 @@ const HANDLERS = {
     const u = { ...st.usage, wallMs: now - st.usage.since };
     st.usage = { since: now, workMs: 0, frameMs: 0, frames: 0 };
     return { usage: u };
+  },
+  /** Times `benchMctsLoops(config, seed, loops)` in one call here (the browser benchmark). */
+  benchLoops(msg) {
+    const t0 = performance.now();
+    const [loops] = st.wasm.benchMctsLoops(msg.config, BigInt(msg.seed), msg.loops);
+    return { loops, ms: performance.now() - t0 };
   },
   export() {
     return { runs: st.runs.map((r) => r.exportData()) };

@@ -5,6 +5,8 @@
 //   longest_task_ms_n256  the longest main-thread task meanwhile (PerformanceObserver 'longtask')
 //   page_loops_per_s_*    MCTS loops/s in the page (search worker, drawing on)
 //   page_loop_window_*    which loops of the episode the page ran meanwhile
+//   wasm_window_loops_per_s_*  the same loops in one wasm call in the search
+//                         worker (no frame loop, no drawing)
 //   wasm_loops_per_s_*    MCTS loops in one wasm call on the page's thread, same configs
 //   wasm_rw_steps_per_s   RW rollout lattice steps/s in wasm (N=40, r_v=1)
 //   native_*              with --native: `target/release/torus-search bench --json`
@@ -109,6 +111,24 @@ async function measurePage(context, url, { untick = [] } = {}) {
   }
 }
 
+/** Times, in one wasm call in the search worker, the loops a page measurement ran. */
+async function measureWindow(context, url, m) {
+  const { page } = await openPage(context, url);
+  try {
+    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
+    return await page.evaluate(async ({ core, seed, window: [a, b] }) => {
+      const s = window.torusPage.session;
+      const run = (loops) => s.request('benchLoops', { config: core, seed, loops });
+      await run(Math.min(a, 5000)); // warm up
+      const ta = (await run(a)).ms;
+      const tb = (await run(b)).ms;
+      return Math.round((b - a) / ((tb - ta) / 1000));
+    }, m);
+  } finally {
+    await page.close();
+  }
+}
+
 async function measureWasm(context, url) {
   const { page } = await openPage(context, url);
   try {
@@ -187,12 +207,18 @@ try {
   result.page_over_wasm_loops_n100 = +(result.page_loops_per_s_n100_sigma15 / result.wasm_loops_per_s_n100_sigma15).toFixed(3);
   result.page_loop_window_n256 = big.window;
   result.page_loop_window_n100 = mid.window;
+  for (const [tag, m] of [['n256', big], ['n100_sigma15', mid]]) {
+    const lps = await measureWindow(browser.context, `${server.url}?autoplay=0`, m);
+    result[`wasm_window_loops_per_s_${tag}`] = lps;
+    result[`page_over_wasm_window_${tag}`] = +(m.loops_per_s / lps).toFixed(3);
+  }
   if (wantNative) {
     for (const [tag, m] of [['n256', big], ['n100_sigma15', mid]]) {
       const lps = nativeWindow(m);
       if (lps === null) continue;
       result[`native_window_loops_per_s_${tag}`] = Math.round(lps);
       result[`page_over_native_${tag}`] = +(m.loops_per_s / lps).toFixed(3);
+      result[`wasm_window_over_native_${tag}`] = +(result[`wasm_window_loops_per_s_${tag}`] / lps).toFixed(3);
     }
   }
 } finally {
