@@ -36,8 +36,10 @@ pub struct CellTable {
 /// Records each distinct cell of a loop with the index of its first visit.
 ///
 /// The list is a presized slice with its length in a local, not a `Vec`:
-/// in the rollout's inner loop that keeps the length in a register, which
-/// matters most in wasm (about 1.35× faster loops there).
+/// in the rollout's inner loop that keeps the length in a register (wasm
+/// loops about 1.35× faster). Marking is branch-free (about 1.8× faster
+/// loops natively and in wasm): a random walk revisits cells often and at
+/// random, so a branch on "first visit?" mispredicts.
 struct Mark<'a> {
     stamp: &'a mut [u32],
     epoch: u32,
@@ -53,15 +55,15 @@ impl Visit for Mark<'_> {
         // SAFETY: `cell` comes from the lattice's neighbour table (or is the
         // root or a neighbour of it), so it is < cells() = stamp.len().
         let s = unsafe { self.stamp.get_unchecked_mut(cell as usize) };
-        if *s != self.epoch {
-            *s = self.epoch;
-            debug_assert!(self.len < self.touched.len());
-            // SAFETY: each distinct cell is written once, so `len` ≤ the
-            // number of distinct cells visited ≤ min(cells, loop length),
-            // and `touched` is sized to that bound before every loop.
-            unsafe { *self.touched.get_unchecked_mut(self.len) = (cell, self.index) };
-            self.len += 1;
-        }
+        let new = *s != self.epoch;
+        *s = self.epoch;
+        debug_assert!(self.len < self.touched.len());
+        // Always write the slot; keep it only for a first visit.
+        // SAFETY: `len` counts the distinct cells before this one, so
+        // len ≤ min(cells, cap + 2) < touched.len(): `iterate` sizes it
+        // with one spare slot for this unconditional write.
+        unsafe { *self.touched.get_unchecked_mut(self.len) = (cell, self.index) };
+        self.len += new as usize;
         self.index += 1;
     }
 }
@@ -129,7 +131,7 @@ impl CellTable {
             self.epoch = 1;
         }
         // A loop visits at most cap + 2 cells (root, child, the rollout).
-        let most = self.stamp.len().min(env.rollout_cap as usize + 2);
+        let most = self.stamp.len().min(env.rollout_cap as usize + 2) + 1;
         if self.touched.len() < most {
             self.touched.resize(most, (0, 0));
         }
