@@ -172,9 +172,10 @@ export class Run {
    * req = { layers: [{ name, palette, scale, alphaLo, alphaHi, dep }],
    *         have: { [name]: key } (renderings the page already holds),
    *         pathHave: path entries the page already holds, traces: bool }
-   * Buffers to transfer (not clone) are pushed onto `transfer`.
+   * Buffers to transfer (not clone) are pushed onto `transfer`. `playing`:
+   * the worker is searching on its own, so big layers may lag a little.
    */
-  frame(req, transfer) {
+  frame(req, transfer, playing = false) {
     const h = this.h;
     const n2 = this.n * this.n;
     const steps = h.steps();
@@ -201,11 +202,16 @@ export class Run {
     out.pathFrom = req.pathHave <= len ? req.pathHave : 0;
     out.path = new Uint32Array(memoryBuffer(), h.pathPtr(), len).slice(out.pathFrom);
     transfer.push(out.path.buffer);
-    // On big lattices the per-loop layers are recoloured at most ~8 times a
-    // second (a million cells each); the worker keeps its time for the search.
-    const slow = n2 > 1 << 17 ? Math.floor(performance.now() / 120) : rollouts;
+    // While the search runs at full tilt, layers that change with every loop
+    // or move are recoloured at most ~30 times a second above 128×128 cells
+    // and ~8 times above 362×362 (the canvas still redraws every frame):
+    // recolouring and copying them out would take the worker's time from the
+    // search. Paused or stepped, every change shows at once.
+    const period = !playing ? 0 : n2 > 1 << 17 ? 120 : n2 > 1 << 14 ? 33 : 0;
+    const tick = period ? `t${Math.floor(performance.now() / period)}` : null;
     for (const l of req.layers) {
-      const dep = l.dep === 'static' ? '' : l.dep === 'steps' ? steps : `${steps}:${slow}`;
+      const exact = l.dep === 'steps' ? `${steps}` : `${steps}:${rollouts}`;
+      const dep = l.dep === 'static' ? '' : (tick ?? exact);
       const key = `${this.serial}:${l.name}:${l.palette}|${l.scale}|${l.alphaLo}|${l.alphaHi}|${dep}`;
       if (req.have?.[l.name] === key) {
         out.layers.push({ name: l.name, key, same: true });

@@ -106,7 +106,7 @@ function schedule() {
 function frames(views) {
   const t0 = performance.now();
   const transfer = [];
-  const out = st.runs.map((r, i) => r.frame(views?.[i] ?? { layers: [], pathHave: 0 }, transfer));
+  const out = st.runs.map((r, i) => r.frame(views?.[i] ?? { layers: [], pathHave: 0 }, transfer, st.playing && r.status() === 'running'));
   st.usage.frameMs += performance.now() - t0;
   st.usage.frames++;
   return { frames: out, transfer };

@@ -7,13 +7,15 @@
 //   page_loop_window_*    which loops of the episode the page ran meanwhile
 //   wasm_window_loops_per_s_*  the same loops in one wasm call in the search
 //                         worker (no frame loop, no drawing)
-//   wasm_loops_per_s_*    MCTS loops in one wasm call on the page's thread, same configs
+//   wasm_loops_per_s_*    MCTS loops in one wasm call on the page's thread (loops 0..L)
 //   wasm_rw_steps_per_s   RW rollout lattice steps/s in wasm (N=40, r_v=1)
 //   native_*              with --native: `target/release/torus-search bench --json`
 //                         (the suite), and the very loops the page ran, timed
 //                         natively (`bench --episode CONFIG --loops FROM..TO`);
 //                         page_over_native_* divides the two
-// Usage: node tests/e2e/bench.mjs [--native] [--seconds S]
+// Each page figure is the median of --repeat measurements (default 3), and
+// every ratio is taken within one measurement (its own loop window) first.
+// Usage: node tests/e2e/bench.mjs [--native] [--seconds S] [--repeat R]
 // Needs `make build` (www/pkg) first.
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, writeFileSync } from 'node:fs';
@@ -24,6 +26,7 @@ import { ROOT, launchBrowser, openPage, startServer } from './harness.mjs';
 const args = process.argv.slice(2);
 const seconds = Number(args[args.indexOf('--seconds') + 1]) || 5;
 const wantNative = args.includes('--native');
+const repeat = Math.max(1, Math.min(20, Number(args[args.indexOf('--repeat') + 1]) || 3));
 
 // Counts animation frames and long tasks from before the page's own scripts run.
 const PROBE = () => {
@@ -183,44 +186,61 @@ function nativeWindow(m) {
   return JSON.parse(execFileSync(BIN, args, { encoding: 'utf8', timeout: 600_000 })).loops_per_s;
 }
 
+const median = (xs) => {
+  const v = xs.filter((x) => Number.isFinite(x)).sort((p, q) => p - q);
+  if (!v.length) return null;
+  const m = v.length >> 1;
+  return v.length % 2 ? v[m] : (v[m - 1] + v[m]) / 2;
+};
+const r3 = (x) => (x === null ? null : +x.toFixed(3));
+
 const server = await startServer(ROOT);
 const browser = await launchBrowser({ viewport: { width: 1280, height: 900 } });
-const result = { seconds, chromium: null, url_n256: null };
+const result = { seconds, repeat, chromium: null, url_n256: null };
 try {
   await browser.context.addInitScript(PROBE);
   result.chromium = browser.context.browser()?.version() ?? null;
-  // N=256: prior + visits heatmaps + path (the default layers), no rollout traces.
+  // N=256: prior + visits heatmaps + path (the default layers), no rollout
+  // traces; N=100: a long episode at full speed. Each is measured `repeat`
+  // times on fresh pages, and each measurement's loop window is also timed
+  // in one wasm call in the search worker and (--native) natively, right
+  // after it: this machine's speed drifts by ±10% over a minute, so ratios
+  // are taken per measurement and the medians reported.
   const q256 = '?n=256&sigma=40&loops=100&seed=1&belief=posterior';
   result.url_n256 = q256;
-  const big = await measurePage(browser.context, `${server.url}${q256}`, { untick: ['layer-rollouts', 'layer-practice'] });
-  result.fps_n256 = big.fps;
-  result.longest_task_ms_n256 = big.longest_task_ms;
-  result.long_tasks_n256 = big.long_tasks;
-  result.page_loops_per_s_n256 = big.loops_per_s;
-  // A long episode at full speed, drawing on (traces off), for page vs wasm loops/s.
-  const mid = await measurePage(browser.context, `${server.url}?n=100&sigma=15&seed=1`, { untick: ['layer-rollouts', 'layer-practice'] });
-  result.fps_n100 = mid.fps;
-  result.page_loops_per_s_n100_sigma15 = mid.loops_per_s;
-  result.page_rollout_steps_per_s_n100 = mid.rollout_steps_per_s;
-  result.longest_task_ms_n100 = mid.longest_task_ms;
-  Object.assign(result, await measureWasm(browser.context, `${server.url}?autoplay=0`));
-  result.page_over_wasm_loops_n100 = +(result.page_loops_per_s_n100_sigma15 / result.wasm_loops_per_s_n100_sigma15).toFixed(3);
-  result.page_loop_window_n256 = big.window;
-  result.page_loop_window_n100 = mid.window;
-  for (const [tag, m] of [['n256', big], ['n100_sigma15', mid]]) {
-    const lps = await measureWindow(browser.context, `${server.url}?autoplay=0`, m);
-    result[`wasm_window_loops_per_s_${tag}`] = lps;
-    result[`page_over_wasm_window_${tag}`] = +(m.loops_per_s / lps).toFixed(3);
-  }
-  if (wantNative) {
-    for (const [tag, m] of [['n256', big], ['n100_sigma15', mid]]) {
-      const lps = nativeWindow(m);
-      if (lps === null) continue;
-      result[`native_window_loops_per_s_${tag}`] = Math.round(lps);
-      result[`page_over_native_${tag}`] = +(m.loops_per_s / lps).toFixed(3);
-      result[`wasm_window_over_native_${tag}`] = +(result[`wasm_window_loops_per_s_${tag}`] / lps).toFixed(3);
+  const configs = [
+    ['n256', q256],
+    ['n100_sigma15', '?n=100&sigma=15&seed=1'],
+  ];
+  for (const [tag, query] of configs) {
+    const runs = [];
+    for (let k = 0; k < repeat; k++) {
+      const m = await measurePage(browser.context, `${server.url}${query}`, { untick: ['layer-rollouts', 'layer-practice'] });
+      m.wasm = await measureWindow(browser.context, `${server.url}?autoplay=0`, m);
+      m.native = wantNative ? nativeWindow(m) : null;
+      runs.push(m);
     }
+    const pick = (f) => median(runs.map(f));
+    result[`fps_${tag}`] = r3(pick((m) => m.fps));
+    result[`longest_task_ms_${tag}`] = Math.max(...runs.map((m) => m.longest_task_ms));
+    result[`long_tasks_${tag}`] = runs.reduce((a, m) => a + m.long_tasks, 0);
+    result[`page_loops_per_s_${tag}`] = Math.round(pick((m) => m.loops_per_s));
+    result[`wasm_window_loops_per_s_${tag}`] = Math.round(pick((m) => m.wasm));
+    result[`page_over_wasm_window_${tag}`] = r3(pick((m) => m.loops_per_s / m.wasm));
+    if (wantNative && runs.every((m) => m.native)) {
+      result[`native_window_loops_per_s_${tag}`] = Math.round(pick((m) => m.native));
+      result[`page_over_native_${tag}`] = r3(pick((m) => m.loops_per_s / m.native));
+      result[`wasm_window_over_native_${tag}`] = r3(pick((m) => m.wasm / m.native));
+    }
+    result[`runs_${tag}`] = runs.map((m) => ({
+      window: m.window,
+      fps: m.fps,
+      page: m.loops_per_s,
+      wasm: m.wasm,
+      native: m.native === null ? null : Math.round(m.native),
+    }));
   }
+  Object.assign(result, await measureWasm(browser.context, `${server.url}?autoplay=0`));
 } finally {
   await browser.close();
   await server.close();
