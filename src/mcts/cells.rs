@@ -33,7 +33,8 @@ pub struct CellTable {
     selected: [u32; 4],
 }
 
-/// Records each distinct cell of a loop with the index of its first visit.
+/// Records each distinct cell of a loop with the index of its first visit
+/// (root 0, selected neighbour 1, rollout move j at j + 1).
 ///
 /// The list is a presized slice with its length in a local, not a `Vec`:
 /// in the rollout's inner loop that keeps the length in a register (wasm
@@ -43,14 +44,13 @@ pub struct CellTable {
 struct Mark<'a> {
     stamp: &'a mut [u32],
     epoch: u32,
-    index: u32,
     touched: &'a mut [(u32, u32)],
     len: usize,
 }
 
-impl Visit for Mark<'_> {
+impl Mark<'_> {
     #[inline]
-    fn visit(&mut self, cell: u32) {
+    fn mark(&mut self, cell: u32, index: u32) {
         debug_assert!((cell as usize) < self.stamp.len());
         // SAFETY: `cell` comes from the lattice's neighbour table (or is the
         // root or a neighbour of it), so it is < cells() = stamp.len().
@@ -62,9 +62,15 @@ impl Visit for Mark<'_> {
         // SAFETY: `len` counts the distinct cells before this one, so
         // len ≤ min(cells, cap + 2) < touched.len(): `iterate` sizes it
         // with one spare slot for this unconditional write.
-        unsafe { *self.touched.get_unchecked_mut(self.len) = (cell, self.index) };
+        unsafe { *self.touched.get_unchecked_mut(self.len) = (cell, index) };
         self.len += new as usize;
-        self.index += 1;
+    }
+}
+
+impl Visit for Mark<'_> {
+    #[inline]
+    fn visit(&mut self, cell: u32, step: u32) {
+        self.mark(cell, step + 1);
     }
 }
 
@@ -143,12 +149,11 @@ impl CellTable {
         let mut mark = Mark {
             stamp: &mut self.stamp,
             epoch: self.epoch,
-            index: 0,
             touched: &mut self.touched,
             len: 0,
         };
-        mark.visit(root);
-        mark.visit(child);
+        mark.mark(root, 0);
+        mark.mark(child, 1);
         let (steps, detected) = if env.mask[child as usize] != 0 {
             (0, true)
         } else {

@@ -217,8 +217,8 @@ pub(crate) struct Tee<'a, V: Visit> {
 
 impl<V: Visit> Visit for Tee<'_, V> {
     #[inline]
-    fn visit(&mut self, cell: u32) {
-        self.inner.visit(cell);
+    fn visit(&mut self, cell: u32, step: u32) {
+        self.inner.visit(cell, step);
         if let Some(t) = self.trace.as_deref_mut() {
             t.push(cell);
         }

@@ -25,8 +25,9 @@ pub struct Outcome {
 
 /// Receives every cell a rollout enters, in order.
 pub trait Visit {
-    /// Called once per unit move with the cell entered.
-    fn visit(&mut self, cell: u32);
+    /// Called once per unit move with the cell entered and the move's
+    /// number `step` (1 for the first move of the rollout).
+    fn visit(&mut self, cell: u32, step: u32);
 }
 
 /// A visitor that records nothing (the fastest rollout).
@@ -34,12 +35,12 @@ pub struct NoVisit;
 
 impl Visit for NoVisit {
     #[inline(always)]
-    fn visit(&mut self, _: u32) {}
+    fn visit(&mut self, _: u32, _: u32) {}
 }
 
 impl Visit for Vec<u32> {
     #[inline]
-    fn visit(&mut self, cell: u32) {
+    fn visit(&mut self, cell: u32, _: u32) {
         self.push(cell);
     }
 }
@@ -170,7 +171,7 @@ impl Policy {
                 let mut cell = start;
                 for steps in 1..=cap {
                     cell = self.advance(torus, rng, cell);
-                    visit.visit(cell);
+                    visit.visit(cell, steps);
                     if mask[cell as usize] != 0 {
                         return Outcome {
                             steps,

@@ -55,7 +55,7 @@ impl RandomWalk {
                 unsafe {
                     p = *nbr.get_unchecked(p + (b & 3) as usize) as usize;
                     b >>= 2;
-                    visit.visit((p >> 2) as u32);
+                    visit.visit((p >> 2) as u32, steps + i + 1);
                     if *mask.get_unchecked(p >> 2) != 0 {
                         return Outcome {
                             steps: steps + i + 1,
