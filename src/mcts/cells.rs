@@ -26,10 +26,9 @@ pub struct CellTable {
     reward: Vec<f64>,
     stamp: Vec<u32>,
     epoch: u32,
-    /// (cell, index of its first visit) for this loop's distinct cells, in
-    /// `touched[..touched_len]`; sized once for the longest possible loop.
+    /// (cell, index of its first visit) for a loop's distinct cells, in
+    /// its first `Mark::len` slots; sized once for the longest possible loop.
     touched: Vec<(u32, u32)>,
-    touched_len: usize,
     selected: [u32; 4],
 }
 
@@ -51,10 +50,7 @@ struct Mark<'a> {
 impl Mark<'_> {
     #[inline]
     fn mark(&mut self, cell: u32, index: u32) {
-        debug_assert!((cell as usize) < self.stamp.len());
-        // SAFETY: `cell` comes from the lattice's neighbour table (or is the
-        // root or a neighbour of it), so it is < cells() = stamp.len().
-        let s = unsafe { self.stamp.get_unchecked_mut(cell as usize) };
+        let s = &mut self.stamp[cell as usize];
         let new = *s != self.epoch;
         *s = self.epoch;
         debug_assert!(self.len < self.touched.len());
@@ -83,7 +79,6 @@ impl CellTable {
             stamp: vec![0; cells],
             epoch: 0,
             touched: Vec::new(),
-            touched_len: 0,
             selected: [0; 4],
         }
     }
@@ -164,12 +159,12 @@ impl CellTable {
             mark = tee.inner;
             (out.steps, out.detected)
         };
-        self.touched_len = mark.len;
+        let touched = mark.len;
         // τ counts the move to the neighbour plus the rollout; a truncated
         // rollout found nothing and earns nothing.
         let tau = 1 + steps;
         let reward = if detected { 1.0 / tau as f64 } else { 0.0 };
-        for &(c, k) in &self.touched[..self.touched_len] {
+        for &(c, k) in &self.touched[..touched] {
             self.visits[c as usize] += 1;
             if detected && k > 0 {
                 self.reward[c as usize] += 1.0 / (tau + 1 - k) as f64;
