@@ -120,7 +120,7 @@ export class Controller {
       if (ticket === this.resets) this.fail(err);
       return false;
     }
-    if (!runs || ticket !== this.resets) return false;
+    if (ticket !== this.resets) return false;
     this.runs = runs;
     this.meter.frames = [];
     this.meter.loops = [];

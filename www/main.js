@@ -436,7 +436,7 @@ function layerSpecs(run) {
 /** What each run's next frame from the worker must carry. */
 function frameViews(runs) {
   const traces = $('layer-rollouts').checked || $('layer-practice').checked;
-  return runs.map((r, i) => r.request(layerSpecs(r, i), traces && r.isMcts));
+  return runs.map((r) => r.request(layerSpecs(r), traces && r.isMcts));
 }
 
 function draw(info) {
@@ -446,9 +446,9 @@ function draw(info) {
   page.lastTs = info.state === 'running' ? ts : 0;
   if (!runs.length) return;
   const reveal = $('reveal').checked;
-  const snaps = runs.map((run, i) => {
+  const snaps = runs.map((run) => {
     // Bottom to top, as chosen now; a layer just switched on appears with the next frame.
-    const layers = layerSpecs(run, i)
+    const layers = layerSpecs(run)
       .map((spec) => {
         const got = run.layers.get(spec.name);
         return got ? { ...spec, ...got } : null;

@@ -146,13 +146,13 @@ export class SearchSession {
     });
   }
 
-  /** Builds fresh runs; resolves to their RunViews, or null if a newer reset overtook it. */
+  /** Builds fresh runs; resolves to their RunViews (the controller drops overtaken ones). */
   async reset(spec) {
     if (this.trapped) this.spawn();
     await this.ready;
     const gen = ++this.gen;
     const answer = await this.request('reset', { gen, ...spec });
-    return gen === this.gen ? answer.runs.map((info) => new RunView(info)) : null;
+    return answer.runs.map((info) => new RunView(info));
   }
 
   /** True if an answer belongs to the current runs. */

@@ -7,7 +7,7 @@
 // Messages in (each with an `id`, answered once by { id, ok: true, ... } or
 // { id, ok: false, error, trap }):
 //   init   { module }                  instantiate the engine (a compiled WebAssembly.Module)
-//   reset  { gen, runs: [{ core, label }], seed, pace }
+//   reset  { gen, runs: [{ core, label }], seed }
 //                                      build fresh runs; answers { runs: [describe()] }
 //   play   { speed } / pause / speed { speed }
 //   frame  { views: [req per run] }    (at a set speed: that many loops first) answers { frames }
