@@ -44,7 +44,7 @@ enum Cmd {
         #[arg(long, value_name = "FROM..TO", requires = "episode")]
         loops: Option<String>,
         /// The seed for --episode.
-        #[arg(long, default_value_t = 1)]
+        #[arg(long, default_value_t = 1, requires = "episode")]
         seed: u64,
     },
 }
@@ -550,7 +550,7 @@ fn bench_window(
             file.display()
         ))
     })?;
-    cfg.validate().map_err(from_config)?;
+    // LoopRunner::new validates the config.
     let mut runner = torus_search::bench::LoopRunner::new(&cfg, seed).map_err(from_config)?;
     runner.run(from).map_err(from_config)?;
     let t = Instant::now();

@@ -114,6 +114,7 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             &["bench", "--episode", "Cargo.toml", "--loops", "0..9"],
             "--episode Cargo.toml is not a core config (JSON)",
         ),
+        (&["bench", "--seed", "3"], "--episode <FILE>"),
     ];
     for (args, want) in cases {
         let o = cli(args);
