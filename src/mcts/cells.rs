@@ -43,23 +43,50 @@ pub struct CellTable {
 struct Mark<'a> {
     stamp: &'a mut [u32],
     epoch: u32,
-    touched: &'a mut [(u32, u32)],
-    len: usize,
+    /// The list's first slot, and the next free one.
+    base: *mut (u32, u32),
+    cur: *mut (u32, u32),
+    /// One past the list's last slot (checked in debug builds).
+    end: *mut (u32, u32),
+    _list: core::marker::PhantomData<&'a mut [(u32, u32)]>,
 }
 
-impl Mark<'_> {
+impl<'a> Mark<'a> {
+    fn new(stamp: &'a mut [u32], epoch: u32, touched: &'a mut [(u32, u32)]) -> Mark<'a> {
+        let range = touched.as_mut_ptr_range();
+        Mark {
+            stamp,
+            epoch,
+            base: range.start,
+            cur: range.start,
+            end: range.end,
+            _list: core::marker::PhantomData,
+        }
+    }
+
+    /// Distinct cells marked so far.
+    fn len(&self) -> usize {
+        // SAFETY: `cur` only moves forward from `base` within one slice.
+        unsafe { self.cur.offset_from(self.base) as usize }
+    }
+
     #[inline]
     fn mark(&mut self, cell: u32, index: u32) {
-        let s = &mut self.stamp[cell as usize];
+        debug_assert!((cell as usize) < self.stamp.len());
+        // SAFETY: cells come from the torus (< cells() = stamp.len()).
+        let s = unsafe { self.stamp.get_unchecked_mut(cell as usize) };
         let new = *s != self.epoch;
         *s = self.epoch;
-        debug_assert!(self.len < self.touched.len());
-        // Always write the slot; keep it only for a first visit.
-        // SAFETY: `len` counts the distinct cells before this one, so
-        // len ≤ min(cells, cap + 2) < touched.len(): `iterate` sizes it
-        // with one spare slot for this unconditional write.
-        unsafe { *self.touched.get_unchecked_mut(self.len) = (cell, index) };
-        self.len += new as usize;
+        debug_assert!(self.cur < self.end);
+        // Always write the slot; keep it only for a first visit. A moving
+        // pointer, not base + length, saves wasm engines a register.
+        // SAFETY: `cur` is `base` + the distinct cells before this one, and
+        // there are at most min(cells, cap + 2) < the slice's length:
+        // `iterate` sizes it with one spare slot for this unconditional write.
+        unsafe {
+            self.cur.write((cell, index));
+            self.cur = self.cur.add(new as usize);
+        }
     }
 }
 
@@ -141,12 +168,7 @@ impl CellTable {
             t.push(root);
             t.push(child);
         }
-        let mut mark = Mark {
-            stamp: &mut self.stamp,
-            epoch: self.epoch,
-            touched: &mut self.touched,
-            len: 0,
-        };
+        let mut mark = Mark::new(&mut self.stamp, self.epoch, &mut self.touched);
         mark.mark(root, 0);
         mark.mark(child, 1);
         let (steps, detected) = if env.mask[child as usize] != 0 {
@@ -159,7 +181,7 @@ impl CellTable {
             mark = tee.inner;
             (out.steps, out.detected)
         };
-        let touched = mark.len;
+        let touched = mark.len();
         // τ counts the move to the neighbour plus the rollout; a truncated
         // rollout found nothing and earns nothing.
         let tau = 1 + steps;

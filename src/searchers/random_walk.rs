@@ -54,6 +54,9 @@ impl RandomWalk {
                 // `p + (b & 3) < 4 * cells() = nbr.len()` and `p >> 2 < mask.len()`.
                 unsafe {
                     p = *nbr.get_unchecked(p + (b & 3) as usize) as usize;
+                    // Every entry is 4 × a cell: saying so lets a visitor
+                    // that indexes by cell use `p` as the byte offset.
+                    core::hint::assert_unchecked(p % 4 == 0);
                     b >>= 2;
                     visit.visit((p >> 2) as u32, steps + i + 1);
                     if *mask.get_unchecked(p >> 2) != 0 {
