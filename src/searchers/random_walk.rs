@@ -46,9 +46,11 @@ impl RandomWalk {
         let mut p = 4 * start as usize;
         let mut steps = 0u32;
         while steps < cap {
-            let chunk = (cap - steps).min(32);
+            let end = steps + (cap - steps).min(32);
             let mut b = rng::bits(rng);
-            for i in 0..chunk {
+            // One counter, the move number, also ends the chunk: a second
+            // one (moves left) cost wasm engines a register and a spill.
+            while steps != end {
                 // SAFETY: `p / 4` starts in range and every table entry is
                 // 4 × a cell index < cells() ≤ mask.len() (asserted above), so
                 // `p + (b & 3) < 4 * cells() = nbr.len()` and `p >> 2 < mask.len()`.
@@ -58,16 +60,16 @@ impl RandomWalk {
                     // that indexes by cell use `p` as the byte offset.
                     core::hint::assert_unchecked(p % 4 == 0);
                     b >>= 2;
-                    visit.visit((p >> 2) as u32, steps + i + 1);
+                    steps += 1;
+                    visit.visit((p >> 2) as u32, steps);
                     if *mask.get_unchecked(p >> 2) != 0 {
                         return Outcome {
-                            steps: steps + i + 1,
+                            steps,
                             detected: true,
                         };
                     }
                 }
             }
-            steps += chunk;
         }
         Outcome {
             steps: cap,
