@@ -1,8 +1,9 @@
 #!/usr/bin/env node
 // Instructions per MCTS loop, wasm (V8's optimising tier) vs native, counted
-// by valgrind's callgrind: unlike seconds, the counts repeat exactly from run
-// to run whatever else the machine is doing, so a change to the hot loop can
-// be judged in one run on a noisy 2-core VM. No timed assertions.
+// by valgrind's callgrind: unlike seconds, the counts do not depend on what
+// else the machine is doing (native ones repeat exactly, wasm ones within
+// about 0.2%), so a change to the hot loop can be judged in one run on a
+// noisy 2-core VM. No timed assertions.
 //
 // Each side runs loops 0..A and 0..B of the same episode (config, seed) and
 // the difference is divided by B − A, so start-up and compilation cancel.

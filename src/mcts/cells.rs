@@ -73,7 +73,8 @@ impl<'a> Mark<'a> {
     #[inline]
     fn mark(&mut self, cell: u32, index: u32) {
         debug_assert!((cell as usize) < self.stamp.len());
-        // SAFETY: cells come from the torus (< cells() = stamp.len()).
+        // SAFETY: every cell comes from the torus, and `iterate` asserts
+        // that the table has one stamp per torus cell.
         let s = unsafe { self.stamp.get_unchecked_mut(cell as usize) };
         let new = *s != self.epoch;
         *s = self.epoch;
@@ -168,6 +169,12 @@ impl CellTable {
             t.push(root);
             t.push(child);
         }
+        // The stamp table is read unchecked in the rollout's inner loop.
+        assert_eq!(
+            self.stamp.len(),
+            env.torus.cells(),
+            "table and torus sizes differ"
+        );
         let mut mark = Mark::new(&mut self.stamp, self.epoch, &mut self.touched);
         mark.mark(root, 0);
         mark.mark(child, 1);
