@@ -467,11 +467,12 @@ function draw(info) {
       else layers.unshift({ rgba });
     }
     const found = snap.status === 'found';
-    page.renderers[i].draw({
+    const more = page.renderers[i].draw({
       n: snap.n,
       layers,
       path: $('layer-path').checked ? run.pathView() : null,
       pathLen: snap.pathLen,
+      pathKey: run,
       start: snap.start,
       position: snap.position,
       target: snap.target,
@@ -483,6 +484,8 @@ function draw(info) {
       grid: $('layer-grid').checked,
       tiling: $('tiling').checked,
     });
+    // A long path drawn again (after a resize, say) fills in over frames.
+    if (more) page.controller.requestDraw();
   });
   // Text panels and the chart change ~10 times a second while running: more
   // is unreadable, and each change costs the page's thread style, layout and

@@ -89,30 +89,83 @@ export function wrapSegments(cells, n) {
   return segs;
 }
 
-/** Caches a long path as immutable Path2D chunks, so each frame only builds the new tail. */
-class PathCache {
-  constructor(chunk = 512) {
-    this.chunk = chunk;
-    this.reset(0);
+/**
+ * Path points drawn per frame at most. A frame draws only the path's new
+ * segments; after a resize or a new run the whole path is drawn again, and a
+ * long one fills in over a few frames rather than blocking one.
+ */
+export const PATH_POINTS_PER_FRAME = 20000;
+
+/**
+ * The searcher's path, kept drawn on two canvases the size of the view (halo
+ * below, line above), so a frame strokes only the new segments and blits the
+ * two: stroking the whole path every frame cost about 2 ms per 1000 moves.
+ */
+class PathLayer {
+  constructor() {
+    this.halo = document.createElement('canvas');
+    this.line = document.createElement('canvas');
+    this.sig = '';
+    this.key = undefined; // the run the drawing belongs to (compared by identity)
+    this.done = 0; // path points drawn; the next segment starts at done − 1
   }
-  reset(n) {
-    this.n = n;
-    this.chunks = [];
-    this.done = 0; // path points covered by full chunks (overlapping by one point)
+
+  /** Drops the drawing (the next update starts over). */
+  forget() {
+    this.sig = '';
+    this.done = 0;
   }
-  /** Returns Path2D objects covering cells[0..len). */
-  paths(cells, len, n) {
-    if (n !== this.n || len < this.done) this.reset(n);
-    while (len - this.done > this.chunk) {
-      const p = new Path2D();
-      const from = Math.max(0, this.done - 1);
-      appendWrapPath(p, cells, from, this.done + this.chunk, n);
-      this.chunks.push(p);
-      this.done += this.chunk;
+
+  /**
+   * Draws cells[done−1..len) (at most PATH_POINTS_PER_FRAME points) in every
+   * tile, starting over when the view's geometry, the run or the width
+   * changed, or the path got shorter. Returns true once the path is drawn
+   * to its end.
+   */
+  update(cells, len, n, view) {
+    const { width, height, cell, origin, gridPx, tiles, key, lineWidth } = view;
+    const sig = [width, height, n, cell, origin, tiles.length, lineWidth].join('|');
+    if (sig !== this.sig || key !== this.key || len < this.done) {
+      for (const c of [this.halo, this.line]) {
+        // Setting the size clears the canvas, even to the same size.
+        c.width = width;
+        c.height = height;
+      }
+      this.sig = sig;
+      this.key = key;
+      this.done = 0;
     }
-    const tail = new Path2D();
-    appendWrapPath(tail, cells, Math.max(0, this.done - 1), len, n);
-    return [...this.chunks, tail];
+    const from = Math.max(0, this.done - 1);
+    const to = Math.min(len, from + PATH_POINTS_PER_FRAME);
+    if (to - from >= 2) {
+      const p = new Path2D();
+      appendWrapPath(p, cells, from, to, n);
+      for (const [canvas, color, px] of [
+        [this.halo, COLORS.pathHalo, lineWidth + 2],
+        [this.line, COLORS.path, lineWidth],
+      ]) {
+        const ctx = canvas.getContext('2d');
+        ctx.save();
+        if (tiles.length === 1) {
+          ctx.beginPath();
+          ctx.rect(origin, origin, gridPx, gridPx);
+          ctx.clip();
+        }
+        ctx.lineCap = 'round';
+        ctx.lineJoin = 'round';
+        ctx.strokeStyle = color;
+        ctx.lineWidth = px / cell;
+        for (const ty of tiles) {
+          for (const tx of tiles) {
+            ctx.setTransform(cell, 0, 0, cell, origin + tx * gridPx, origin + ty * gridPx);
+            ctx.stroke(p);
+          }
+        }
+        ctx.restore();
+      }
+    }
+    this.done = Math.max(this.done, to);
+    return this.done >= len;
   }
 }
 
@@ -124,7 +177,7 @@ export class Renderer {
     this.canvas = canvas;
     this.ctx = canvas.getContext('2d', { alpha: false });
     this.offscreens = []; // one N×N canvas per layer slot
-    this.pathCache = new PathCache();
+    this.pathLayer = new PathLayer();
     this.n = 0;
     this.tiling = false;
     this.layout();
@@ -186,10 +239,14 @@ export class Renderer {
    * Draws one frame.
    * scene = {
    *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n), key }] (same key = same pixels),
-   *   path: Uint32Array, pathLen, start, position, target (−1 = none), showTarget,
+   *   path: Uint32Array, pathLen, pathKey (any value naming the run, compared by
+   *   identity: a new key redraws the path),
+   *   start, position, target (−1 = none), showTarget,
    *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
    *   decision: { visits: [4], chosen } | null, grid: bool, tiling: bool, found: bool
    * }
+   * Returns true while the path is not drawn to its end yet (a long path after
+   * a resize or a new run): draw again next frame.
    */
   draw(scene) {
     const { n } = scene;
@@ -259,19 +316,24 @@ export class Renderer {
     ctx.globalAlpha = 1;
 
     // The searcher's path, with a dark halo so it reads on any heatmap.
+    let pending = false;
     if (scene.path && scene.pathLen > 1) {
-      const paths = this.pathCache.paths(scene.path, scene.pathLen, n);
-      const w = Math.max(1.5, Math.min(cs * 0.28, 6));
-      eachTile(() => {
-        ctx.strokeStyle = COLORS.pathHalo;
-        ctx.lineWidth = lw(w + 2);
-        for (const p of paths) ctx.stroke(p);
-        ctx.strokeStyle = COLORS.path;
-        ctx.lineWidth = lw(w);
-        for (const p of paths) ctx.stroke(p);
+      const layer = this.pathLayer;
+      pending = !layer.update(scene.path, scene.pathLen, n, {
+        width: this.canvas.width,
+        height: this.canvas.height,
+        cell: cs,
+        origin: this.origin,
+        gridPx,
+        tiles,
+        key: scene.pathKey,
+        lineWidth: Math.max(1.5, Math.min(cs * 0.28, 6)),
       });
+      ctx.setTransform(1, 0, 0, 1, 0, 0);
+      ctx.drawImage(layer.halo, 0, 0);
+      ctx.drawImage(layer.line, 0, 0);
     } else {
-      this.pathCache.reset(n);
+      this.pathLayer.forget();
     }
 
     const markerR = Math.max(0.3, 5 / cs); // at least 5 device px
@@ -398,6 +460,7 @@ export class Renderer {
       ctx.lineWidth = 2;
       ctx.strokeRect(this.origin, this.origin, gridPx, gridPx);
     }
+    return pending;
   }
 }
 

@@ -9,6 +9,8 @@
 //                         worker (no frame loop, no drawing)
 //   wasm_loops_per_s_*    MCTS loops in one wasm call on the page's thread (loops 0..L)
 //   wasm_rw_steps_per_s   RW rollout lattice steps/s in wasm (N=40, r_v=1)
+//   fps_n100_long_path    frames/s and the longest task over 3 s of a long
+//                         N=100 episode once its path has 9000 moves
 //   native_*              with --native: `target/release/torus-search bench --json`
 //                         (the suite), and the very loops the page ran, timed
 //                         natively (`bench --episode CONFIG --loops FROM..TO`);
@@ -108,6 +110,53 @@ async function measurePage(context, url, { untick = [] } = {}) {
       window: [a.loops, b.loops],
       core: a.core,
       seed: a.seed,
+    };
+  } finally {
+    await page.close();
+  }
+}
+
+/**
+ * Frames/s late in a long episode (N=100, σ=15, full speed), once its path
+ * has `moves` moves: the path must not cost more to draw as it grows.
+ */
+async function measureLongPath(context, url, moves) {
+  const { page } = await openPage(context, url);
+  try {
+    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
+    await page.evaluate(async () => {
+      for (const id of ['layer-rollouts', 'layer-practice']) {
+        const el = document.getElementById(id);
+        if (el.checked) el.click();
+      }
+      const c = window.torusPage.controller;
+      await c.whenReady();
+      c.setSpeed('max');
+      c.play();
+    });
+    await page.waitForFunction(
+      (m) => window.torusPage.controller.runs[0].pathLen >= m || window.torusPage.controller.state !== 'running',
+      moves,
+      { timeout: 180_000, polling: 250 },
+    );
+    const probe = () => page.evaluate(() => ({
+      t: performance.now(),
+      frames: window.__bench.frames,
+      moves: window.torusPage.controller.runs[0].pathLen - 1,
+      state: window.torusPage.controller.state,
+      longest: window.__bench.longest,
+    }));
+    await page.evaluate(() => {
+      window.__bench.longest = 0;
+    });
+    const a = await probe();
+    await page.waitForTimeout(3000);
+    const b = await probe();
+    if (a.state !== 'running' || b.state !== 'running') return { error: `the episode ended before ${moves} moves + 3 s` };
+    return {
+      moves: [a.moves, b.moves],
+      fps: +((b.frames - a.frames) / ((b.t - a.t) / 1000)).toFixed(1),
+      longest_task_ms: b.longest,
     };
   } finally {
     await page.close();
@@ -240,6 +289,7 @@ try {
       native: m.native === null ? null : Math.round(m.native),
     }));
   }
+  result.fps_n100_long_path = await measureLongPath(browser.context, `${server.url}?n=100&sigma=15&seed=1`, 9000);
   Object.assign(result, await measureWasm(browser.context, `${server.url}?autoplay=0`));
 } finally {
   await browser.close();

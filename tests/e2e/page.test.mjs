@@ -259,6 +259,57 @@ test('layer toggles change the drawing', { timeout: 120_000 }, async () => {
   });
 });
 
+test('the path is drawn incrementally, a bounded number of points per frame, and starts over for a new run', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0', async (page) => {
+    const r = await page.evaluate(async () => {
+      const { Renderer, PATH_POINTS_PER_FRAME } = await import('./www/renderer.js');
+      const canvas = document.createElement('canvas');
+      canvas.width = canvas.height = 400;
+      document.body.append(canvas);
+      const view = new Renderer(canvas);
+      const n = 50; // 8 px per cell
+      // Laps along one row, crossing the wrap boundary on every lap.
+      const row = (y, len) => Uint32Array.from({ length: len }, (_, i) => y * n + (i % n));
+      const scene = (path, len, key) => ({
+        n, layers: [], path, pathLen: len, pathKey: key, start: -1, position: -1, target: -1,
+        showTarget: false, rv: 0, rollouts: [], practice: -1, decision: null, grid: false, tiling: false,
+      });
+      const ctx = canvas.getContext('2d');
+      // Brightest channel at a cell's centre: the path's line is near white, the background dark.
+      const lit = (y) => Array.from({ length: n }, (_, x) => Math.max(...ctx.getImageData(x * 8 + 4, y * 8 + 4, 1, 1).data.slice(0, 3)));
+      const out = {};
+      // A path 2.5 frames' budget long, drawn at once: three frames.
+      const long = row(10, Math.floor(2.5 * PATH_POINTS_PER_FRAME));
+      out.pending = [0, 1, 2, 3].map(() => view.draw(scene(long, long.length, 'a')));
+      out.row10 = lit(10);
+      out.row30 = lit(30);
+      // A new run, even with a longer path than the last one drawn, replaces it.
+      const short = row(30, n + 10);
+      view.draw(scene(short, short.length, 'b'));
+      const other = row(40, 2 * n);
+      out.newRunPending = view.draw(scene(other, other.length, 'c'));
+      out.row10After = lit(10);
+      out.row30After = lit(30);
+      out.row40After = lit(40);
+      // Growing a few points per frame, as the search runs, draws the same cells.
+      const grow = row(20, 3 * n);
+      for (let len = 2; len <= grow.length; len += 7) view.draw(scene(grow, Math.min(len, grow.length), 'd'));
+      view.draw(scene(grow, grow.length, 'd'));
+      out.row20 = lit(20);
+      out.row40Gone = lit(40);
+      canvas.remove();
+      return out;
+    });
+    assert.deepEqual(r.pending, [true, true, false, false], 'a long path fills in over frames, then stays drawn');
+    const on = (v) => v.every((c) => c > 200);
+    const off = (v) => v.every((c) => c < 120);
+    assert.ok(on(r.row10) && off(r.row30), `row 10 drawn, row 30 empty: ${r.row10} / ${r.row30}`);
+    assert.equal(r.newRunPending, false);
+    assert.ok(off(r.row10After) && off(r.row30After) && on(r.row40After), 'a new run clears the old path');
+    assert.ok(on(r.row20) && off(r.row40Gone), 'a path grown frame by frame is drawn whole');
+  });
+});
+
 test('export JSON then import replays the episode exactly', { timeout: 180_000 }, async () => {
   let file;
   let exported;
