@@ -90,6 +90,19 @@ export function wrapSegments(cells, n) {
 }
 
 /**
+ * Calls fn(tx, ty) once per tile, with `ctx` transformed to that tile's cell
+ * units (tiles: [0], or [−1, 0, 1] for the 3×3 periodic view).
+ */
+function forEachTile(ctx, cell, origin, gridPx, tiles, fn) {
+  for (const ty of tiles) {
+    for (const tx of tiles) {
+      ctx.setTransform(cell, 0, 0, cell, origin + tx * gridPx, origin + ty * gridPx);
+      fn(tx, ty);
+    }
+  }
+}
+
+/**
  * Path points drawn per frame at most. A frame draws only the path's new
  * segments; after a resize or a new run the whole path is drawn again, and a
  * long one fills in over a few frames rather than blocking one.
@@ -155,12 +168,7 @@ class PathLayer {
         ctx.lineJoin = 'round';
         ctx.strokeStyle = color;
         ctx.lineWidth = px / cell;
-        for (const ty of tiles) {
-          for (const tx of tiles) {
-            ctx.setTransform(cell, 0, 0, cell, origin + tx * gridPx, origin + ty * gridPx);
-            ctx.stroke(p);
-          }
-        }
+        forEachTile(ctx, cell, origin, gridPx, tiles, () => ctx.stroke(p));
         ctx.restore();
       }
     }
@@ -282,14 +290,7 @@ export class Renderer {
 
     // Everything in cell units from here on, translated per tile.
     const lw = (px) => px / cs; // a width in device pixels, expressed in cell units
-    const eachTile = (fn) => {
-      for (const ty of tiles) {
-        for (const tx of tiles) {
-          ctx.setTransform(cs, 0, 0, cs, this.origin + tx * gridPx, this.origin + ty * gridPx);
-          fn(tx, ty);
-        }
-      }
-    };
+    const eachTile = (fn) => forEachTile(ctx, cs, this.origin, gridPx, tiles, fn);
     ctx.save();
     if (!this.tiling) {
       ctx.beginPath();
