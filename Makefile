@@ -87,7 +87,6 @@ bench: setup
 	$(call section,wasm vs native rollouts in Node.js (benches/wasm-node.mjs))
 	node benches/wasm-node.mjs
 	$(call section,instructions per MCTS loop: wasm vs native (benches/instructions.mjs))
-	cargo build $(LOCKED) --release --quiet
 	@command -v valgrind >/dev/null || { apt-get update -qq && apt-get install -y -qq valgrind >/dev/null; }
 	node benches/instructions.mjs
 	@if [[ -f tests/e2e/bench.mjs ]]; then \

@@ -50,23 +50,26 @@ const PROBE = () => {
   }
 };
 
+/** Waits for the page's runs, unticks the layers `untick`, and plays at full speed. */
+async function playAtFullSpeed(page, untick) {
+  await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
+  await page.evaluate(async (ids) => {
+    for (const id of ids) {
+      const el = document.getElementById(id);
+      if (el.checked) el.click();
+    }
+    const c = window.torusPage.controller;
+    // Unticking a trace layer restarts the run (traces are kept from the start).
+    await c.whenReady();
+    c.setSpeed('max');
+    c.play();
+  }, untick);
+}
+
 async function measurePage(context, url, { untick = [] } = {}) {
   const { page } = await openPage(context, url);
   try {
-    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
-    for (const id of untick) {
-      await page.evaluate((i) => {
-        const el = document.getElementById(i);
-        if (el.checked) el.click();
-      }, id);
-    }
-    // Unticking a trace layer restarts the run (traces are kept from the start).
-    await page.waitForFunction(() => window.torusPage.controller.runs.length, null, { timeout: 60_000 });
-    await page.evaluate(() => {
-      const c = window.torusPage.controller;
-      c.setSpeed('max');
-      c.play();
-    });
+    await playAtFullSpeed(page, untick);
     await page.waitForTimeout(1000); // warm up
     const sample = () => page.evaluate(() => {
       const c = window.torusPage.controller;
@@ -123,17 +126,7 @@ async function measurePage(context, url, { untick = [] } = {}) {
 async function measureLongPath(context, url, moves) {
   const { page } = await openPage(context, url);
   try {
-    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
-    await page.evaluate(async () => {
-      for (const id of ['layer-rollouts', 'layer-practice']) {
-        const el = document.getElementById(id);
-        if (el.checked) el.click();
-      }
-      const c = window.torusPage.controller;
-      await c.whenReady();
-      c.setSpeed('max');
-      c.play();
-    });
+    await playAtFullSpeed(page, ['layer-rollouts', 'layer-practice']);
     await page.waitForFunction(
       (m) => window.torusPage.controller.runs[0].pathLen >= m || window.torusPage.controller.state !== 'running',
       moves,
