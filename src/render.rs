@@ -1,7 +1,7 @@
 //! Heatmap rendering: values on the N×N lattice to one RGBA buffer.
 //!
-//! Pure Rust (no browser types), so it is tested natively and the web facade
-//! only hands the buffer to `ImageData` zero-copy.
+//! Pure Rust (no browser types), so it is tested natively; the frame
+//! builder ([`crate::view`]) fills the buffers the page puts on a canvas.
 //!
 //! The palettes are built here from first principles rather than copied from a
 //! table: each is a path through the OKLab colour space whose lightness rises
@@ -14,29 +14,21 @@
 //! * [`Palette::Ember`] — near-black → purple → orange → pale yellow, after inferno.
 //! * [`Palette::Cividis`] — navy → grey → yellow, no red–green component at all.
 
-/// A named colour ramp, sampled into a 256-entry lookup table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Palette {
-    Viridis,
-    Ember,
-    Cividis,
+use crate::named::named_enum;
+
+named_enum! {
+    /// A named colour ramp, sampled into a 256-entry lookup table.
+    pub enum Palette {
+        /// Purple-blue → teal → yellow.
+        Viridis = "viridis",
+        /// Near-black → purple → orange → pale yellow.
+        Ember = "ember",
+        /// Navy → grey → yellow.
+        Cividis = "cividis",
+    }
 }
 
 impl Palette {
-    pub const ALL: [Palette; 3] = [Palette::Viridis, Palette::Ember, Palette::Cividis];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Palette::Viridis => "viridis",
-            Palette::Ember => "ember",
-            Palette::Cividis => "cividis",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Palette> {
-        Palette::ALL.into_iter().find(|p| p.name() == s)
-    }
-
     /// (lightness start, lightness end, hue start°, hue end°, chroma at 0, ½, 1).
     fn path(self) -> ([f64; 2], [f64; 2], [f64; 3]) {
         match self {
@@ -79,28 +71,75 @@ pub enum Scale {
     Log { floor: f64 },
 }
 
+named_enum! {
+    /// How values map onto a palette, by name (see [`Scale`]).
+    pub enum ScaleKind {
+        /// Zero to the maximum.
+        Linear = "linear",
+        /// The smallest nonzero value to the maximum.
+        Stretch = "stretch",
+        /// Logarithmic.
+        Log = "log",
+    }
+}
+
+impl Scale {
+    /// The scale `kind` for values whose maximum is `max`. A log scale's
+    /// floor is 1 for counts, and four decades below the maximum for masses.
+    pub fn of(kind: ScaleKind, max: f64, counts: bool) -> Scale {
+        match kind {
+            ScaleKind::Linear => Scale::Linear,
+            ScaleKind::Stretch => Scale::Stretch,
+            ScaleKind::Log => Scale::Log {
+                floor: if counts { 1.0 } else { max * 1e-4 },
+            },
+        }
+    }
+}
+
 /// How transparent low values are.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Alpha {
     /// Every cell opaque; zero gets the palette's first colour.
     Opaque,
     /// Zero is fully transparent, other cells fade in: alpha = `lo + (hi - lo)·t`.
-    Ramp { lo: u8, hi: u8 },
+    Ramp {
+        /// Alpha of the lowest level.
+        lo: u8,
+        /// Alpha of the highest level.
+        hi: u8,
+    },
 }
 
-/// What [`colorize`] found, for the legend.
+impl Alpha {
+    /// `[255, 255]` is opaque; anything else ramps from `lo` to `hi`.
+    pub fn of([lo, hi]: [u8; 2]) -> Alpha {
+        if lo == 255 && hi == 255 {
+            Alpha::Opaque
+        } else {
+            Alpha::Ramp { lo, hi }
+        }
+    }
+}
+
+/// The extent of a layer's values, for the legend.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Summary {
+pub struct Extent {
+    /// The smallest value.
     pub min: f64,
     /// The smallest value above zero (0 when there is none).
     pub min_nonzero: f64,
+    /// The largest value.
     pub max: f64,
+    /// The sum.
     pub sum: f64,
+    /// How many values are above zero.
     pub nonzero: usize,
 }
 
-/// Values that can be drawn.
+/// Values that can be drawn: masses (f64), counts (u32) and flags (u8).
 pub trait Value: Copy {
+    /// The value as a float.
     fn to_f64(self) -> f64;
 }
 impl Value for f64 {
@@ -109,19 +148,7 @@ impl Value for f64 {
         self
     }
 }
-impl Value for f32 {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-}
 impl Value for u32 {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-}
-impl Value for u64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
@@ -133,16 +160,10 @@ impl Value for u8 {
         self as f64
     }
 }
-impl Value for bool {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as u8 as f64
-    }
-}
 
 /// Minimum, maximum, sum and count of nonzero values (NaN and negatives count as 0).
-pub fn summarize<T: Value>(values: &[T]) -> Summary {
-    let mut s = Summary {
+pub fn summarize<T: Value>(values: &[T]) -> Extent {
+    let mut s = Extent {
         min: f64::INFINITY,
         min_nonzero: f64::INFINITY,
         max: 0.0,
@@ -186,21 +207,15 @@ const LEVEL_EPS: f64 = 1e-6;
 #[derive(Clone)]
 pub struct Colorizer {
     lut: [[u8; 4]; 256],
-    palette: Palette,
 }
 
 impl Colorizer {
+    /// A renderer for `palette`.
     pub fn new(palette: Palette) -> Self {
-        Colorizer {
-            lut: palette.lut(),
-            palette,
-        }
+        Colorizer { lut: palette.lut() }
     }
 
-    pub fn palette(&self) -> Palette {
-        self.palette
-    }
-
+    /// The palette's 256-entry RGBA table.
     pub fn lut(&self) -> &[[u8; 4]; 256] {
         &self.lut
     }
@@ -216,7 +231,7 @@ impl Colorizer {
         out: &mut [u8],
         scale: Scale,
         alpha: Alpha,
-    ) -> Summary {
+    ) -> Extent {
         assert_eq!(out.len(), 4 * values.len(), "RGBA buffer length");
         let summary = summarize(values);
         let max = summary.max;
@@ -392,7 +407,7 @@ mod tests {
 
     #[test]
     fn palettes_have_monotone_linear_lightness() {
-        for p in Palette::ALL {
+        for &p in Palette::ALL {
             let lut = p.lut();
             let ls: Vec<f64> = lut
                 .iter()
@@ -415,7 +430,7 @@ mod tests {
 
     #[test]
     fn palette_names_round_trip() {
-        for p in Palette::ALL {
+        for &p in Palette::ALL {
             assert_eq!(Palette::parse(p.name()), Some(p));
         }
         assert_eq!(Palette::parse("jet"), None);

@@ -2,7 +2,9 @@
 //! searcher's position, one node expanded per loop, subtree reuse after
 //! each real move, in a bounded arena.
 
-use super::{argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
+use super::{
+    argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee,
+};
 use crate::lattice::{Move, Torus};
 use crate::rng;
 use crate::searchers::NoVisit;
@@ -62,15 +64,6 @@ impl Tree {
         }
     }
 
-    /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
-    pub fn begin_decision(&mut self, root: u32) {
-        if self.nodes.first().map(|n| n.cell) != Some(root) {
-            self.nodes.clear();
-            self.nodes.push(Node::leaf(root));
-        }
-        self.selected = [0; 4];
-    }
-
     /// Nodes in the arena.
     pub fn len(&self) -> usize {
         self.nodes.len()
@@ -94,8 +87,39 @@ impl Tree {
         }
     }
 
+    fn select_child(&self, node: u32, env: &mut LoopEnv<'_>) -> Option<usize> {
+        let n = &self.nodes[node as usize];
+        let mut values = [0.0; 4];
+        let mut valid = [false; 4];
+        for i in 0..4 {
+            if n.children[i] != NONE {
+                let ch = &self.nodes[n.children[i] as usize];
+                values[i] = uct_terms(ch.reward, ch.visits, n.visits, env.c).2;
+                valid[i] = true;
+            }
+        }
+        argmax_random(values, valid, env.rng)
+    }
+}
+
+impl Stats for Tree {
+    /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
+    fn begin_decision(&mut self, root: u32, _reset: bool) {
+        if self.nodes.first().map(|n| n.cell) != Some(root) {
+            self.nodes.clear();
+            self.nodes.push(Node::leaf(root));
+        }
+        self.selected = [0; 4];
+    }
+
+    fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32] {
+        scratch.resize(cells, 0);
+        self.project(scratch);
+        scratch
+    }
+
     /// The decision statistics of the root's children.
-    pub fn view(&self, torus: &Torus, root_cell: u32, c: f64) -> DecisionView {
+    fn view(&self, torus: &Torus, root_cell: u32, c: f64) -> DecisionView {
         let root = self.nodes.first().copied().unwrap_or(Node::leaf(root_cell));
         let children = std::array::from_fn(|i| {
             let cell = torus.step(root.cell, Move::ALL[i]);
@@ -112,25 +136,11 @@ impl Tree {
         }
     }
 
-    fn select_child(&self, node: u32, env: &mut LoopEnv<'_>) -> Option<usize> {
-        let n = &self.nodes[node as usize];
-        let mut values = [0.0; 4];
-        let mut valid = [false; 4];
-        for i in 0..4 {
-            if n.children[i] != NONE {
-                let ch = &self.nodes[n.children[i] as usize];
-                values[i] = uct_terms(ch.reward, ch.visits, n.visits, env.c).2;
-                valid[i] = true;
-            }
-        }
-        argmax_random(values, valid, env.rng)
-    }
-
     /// One loop: descend by UCT, expand one node, roll out, backpropagate.
     ///
     /// # Panics
-    /// If called before [`Tree::begin_decision`].
-    pub fn iterate(&mut self, env: &mut LoopEnv<'_>) -> LoopReport {
+    /// If called before [`Stats::begin_decision`].
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, _root: u32) -> LoopReport {
         self.path.clear();
         self.path.push(0);
         if let Some(t) = env.trace.as_deref_mut() {
@@ -225,7 +235,7 @@ impl Tree {
     }
 
     /// Re-roots the tree at the child reached by `m`, keeping its subtree.
-    pub fn advance(&mut self, m: Move) {
+    fn advance(&mut self, m: Move) {
         let Some(root) = self.nodes.first() else {
             return;
         };

@@ -1,8 +1,24 @@
 //! The nearly self-avoiding random walk (NSARW): each step chooses uniformly
 //! among the neighbours visited the fewest times so far.
 
+use super::{Policy, SearcherInfo, Walker};
 use crate::lattice::{Move, Torus};
 use crate::rng::{self, Rng};
+
+/// NSARW as a searcher.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "nsarw",
+    label: "NSARW",
+    help: "each step goes to a least-visited neighbour, ties broken at random",
+    deliberates: false,
+    uses: |_, _| false,
+    build: |s| {
+        Box::new(Walker::new(
+            Policy::Nsarw(Nsarw::new(s.torus.cells())),
+            s.start,
+        ))
+    },
+};
 
 /// NSARW with its own visit counts.
 ///
