@@ -786,6 +786,15 @@ impl Config {
             }
         }
         if self.prior == PriorKind::Paint && self.target.is_none() {
+            // Without a painting the prior is at fault (a URL's fallback
+            // then resets the prior, not the empty paint).
+            if self.paint.is_empty() {
+                return Err(ConfigError::new(
+                    "prior",
+                    "paint",
+                    "gaussian, delta or uniform unless a paint is given",
+                ));
+            }
             prior::decode_paint(&self.paint, n)
                 .map_err(|e| ConfigError::new("paint", e, Kind::Paint.allowed()))?;
         }
@@ -834,15 +843,14 @@ impl Config {
     }
 
     /// `(key, text)` pairs for a URL: every parameter with `full`, else those
-    /// that differ from the default, the seed always (a link reproduces the
-    /// run) and only those that apply.
+    /// that differ from the default, and the seed always (a link reproduces
+    /// the run). Values that do not apply are kept too: switching back to
+    /// what reads them restores them.
     pub fn params(&self, full: bool) -> Vec<(&'static str, String)> {
         let d = Config::default();
         PARAMS
             .iter()
-            .filter(|p| {
-                full || p.key == "seed" || ((p.get)(self) != (p.get)(&d) && p.applies_to(self))
-            })
+            .filter(|p| full || p.key == "seed" || (p.get)(self) != (p.get)(&d))
             .map(|p| (p.key, (p.get)(self).text()))
             .collect()
     }
@@ -1253,16 +1261,21 @@ mod tests {
         assert_eq!(c.loops, 100);
         let fields: Vec<_> = errs.iter().map(|e| e.field).collect();
         assert_eq!(fields, ["loops", "start"]);
-        // Only differing and applying values are written, the seed always.
+        // prior=paint without a painting falls back to the default prior.
+        let (c, errs) = from_params([("prior", "paint")]);
+        assert_eq!((c.prior, errs[0].field), (PriorKind::Gaussian, "prior"));
+        // Only differing values are written (applying or not), the seed always.
         assert_eq!(
             Config::default().params(false),
             vec![("seed", "1".to_string())]
         );
         let rw = from_params([("searcher", "rw"), ("c", "3")]).0;
-        assert_eq!(
-            rw.params(false),
-            vec![("searcher", "rw".into()), ("seed", "1".into())]
-        );
+        let pairs = vec![
+            ("searcher", "rw".into()),
+            ("c", "3".into()),
+            ("seed", "1".into()),
+        ];
+        assert_eq!(rw.params(false), pairs);
     }
 
     #[test]

@@ -87,7 +87,6 @@ enum Sampler {
 /// A prior built on a lattice.
 #[derive(Clone, Debug)]
 pub struct TargetPrior {
-    spec: PriorSpec,
     n: u32,
     mass: Vec<f64>,
     sampler: Sampler,
@@ -161,17 +160,7 @@ impl TargetPrior {
                 (m, Sampler::Alias(a))
             }
         };
-        Ok(TargetPrior {
-            spec: spec.clone(),
-            n,
-            mass,
-            sampler,
-        })
-    }
-
-    /// The spec this prior was built from.
-    pub fn spec(&self) -> &PriorSpec {
-        &self.spec
+        Ok(TargetPrior { n, mass, sampler })
     }
 
     /// Probability of each cell, `y * n + x`; sums to 1.

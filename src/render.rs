@@ -220,6 +220,29 @@ impl Colorizer {
         &self.lut
     }
 
+    /// Colours `values` on the scale `kind` (its log floor set by whether
+    /// they are `counts`), summarising them once; returns the extent.
+    ///
+    /// # Panics
+    /// If `out` does not hold `4 * values.len()` bytes.
+    pub fn colorize_kind<T: Value>(
+        &self,
+        values: &[T],
+        out: &mut [u8],
+        kind: ScaleKind,
+        counts: bool,
+        alpha: Alpha,
+    ) -> Extent {
+        let summary = summarize(values);
+        self.colorize_summarized(
+            values,
+            out,
+            summary,
+            Scale::of(kind, summary.max, counts),
+            alpha,
+        )
+    }
+
     /// Writes one RGBA pixel per value into `out` (which must hold
     /// `4 * values.len()` bytes) and returns the value summary.
     ///
@@ -232,8 +255,18 @@ impl Colorizer {
         scale: Scale,
         alpha: Alpha,
     ) -> Extent {
+        self.colorize_summarized(values, out, summarize(values), scale, alpha)
+    }
+
+    fn colorize_summarized<T: Value>(
+        &self,
+        values: &[T],
+        out: &mut [u8],
+        summary: Extent,
+        scale: Scale,
+        alpha: Alpha,
+    ) -> Extent {
         assert_eq!(out.len(), 4 * values.len(), "RGBA buffer length");
-        let summary = summarize(values);
         let max = summary.max;
         let (lo, hi) = match alpha {
             Alpha::Opaque => (255.0, 255.0),

@@ -11,7 +11,7 @@
 use crate::episode::{Episode, Status};
 use crate::mcts::{self, DecisionView, FinalRule};
 use crate::named::named_enum;
-use crate::render::{summarize, Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
+use crate::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 named_enum! {
@@ -437,10 +437,7 @@ impl FrameBuilder {
         buf.resize(4 * ep.torus().cells(), 0);
         let alpha = Alpha::of(lr.alpha);
         let belief = ep.belief();
-        let mass = |v: &[f64], buf: &mut Vec<u8>| {
-            let scale = Scale::of(lr.scale, summarize(v).max, false);
-            col.colorize(v, buf, scale, alpha)
-        };
+        let mass = |v: &[f64], buf: &mut Vec<u8>| col.colorize_kind(v, buf, lr.scale, false, alpha);
         extent[i] = match lr.layer {
             Layer::Prior => mass(belief.prior_mass(), buf),
             Layer::Plan => mass(belief.plan_mass(), buf),
@@ -450,7 +447,7 @@ impl FrameBuilder {
             }
             Layer::Searched => col.colorize(belief.searched(), buf, Scale::Linear, alpha),
             Layer::Visits | Layer::Walker => match ep.counts(lr.layer, counts) {
-                Some(v) => col.colorize(v, buf, Scale::of(lr.scale, 0.0, true), alpha),
+                Some(v) => col.colorize_kind(v, buf, lr.scale, true, alpha),
                 None => return false,
             },
         };

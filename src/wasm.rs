@@ -12,7 +12,7 @@ use crate::config::{self, Config};
 use crate::episode::{Episode, TrialResult, TRIAL_FIELDS};
 use crate::prior;
 use crate::race::Race as CoreRace;
-use crate::render::{summarize, Alpha, Colorizer, Palette, Scale, ScaleKind};
+use crate::render::{Alpha, Colorizer, Palette, ScaleKind};
 use crate::searchers::PolicyKind;
 use crate::stats::Summary;
 use crate::view::{self, FrameBuilder, FrameRequest};
@@ -158,7 +158,7 @@ pub fn set_param(config: JsValue, key: &str, raw: &str) -> Result<JsValue, JsErr
 }
 
 /// `[key, text]` pairs for a URL: every parameter with `full`, else the
-/// ones that differ from the default and apply, and the seed.
+/// ones that differ from the default, and the seed.
 #[wasm_bindgen(js_name = configParams)]
 pub fn config_params(config: JsValue, full: bool) -> Result<JsValue, JsError> {
     to_js(&config_from_js(config)?.params(full))
@@ -222,10 +222,11 @@ pub fn colorize_values(
         ))
     })?;
     let mut out = vec![0u8; 4 * values.len()];
-    Colorizer::new(parse_palette(palette)?).colorize(
+    Colorizer::new(parse_palette(palette)?).colorize_kind(
         values,
         &mut out,
-        Scale::of(kind, summarize(values).max, false),
+        kind,
+        false,
         Alpha::of([alpha_lo, alpha_hi]),
     );
     Ok(out)
@@ -291,22 +292,25 @@ pub fn summarize_trials(flat: &[f64]) -> Result<JsValue, JsError> {
 
 /// Benchmark workload (timed by the caller): rollouts of `policy` between
 /// random cells until at least `min_steps` lattice steps; returns the steps.
+/// The seed is decimal text, read as the `seed` parameter is.
 #[wasm_bindgen(js_name = benchRolloutSteps)]
 pub fn bench_rollout_steps(
     policy: &str,
     n: u32,
     rv: f64,
     mu: f64,
-    seed: u64,
+    seed: &str,
     min_steps: f64,
 ) -> Result<f64, JsError> {
+    let mut cfg = Config::default();
+    cfg.set("seed", seed).map_err(err)?;
     let kind = PolicyKind::parse(policy).ok_or_else(|| {
         JsError::new(&format!(
             "policy must be one of {}, got {policy:?}",
             PolicyKind::NAMES.join(", ")
         ))
     })?;
-    crate::bench::rollout_steps(kind, n, rv, mu, seed, min_steps as u64)
+    crate::bench::rollout_steps(kind, n, rv, mu, cfg.seed, min_steps as u64)
         .map(|s| s as f64)
         .map_err(err)
 }

@@ -259,11 +259,12 @@ fn walkers_race_and_time_budgets() {
 
 #[wasm_bindgen_test]
 fn benchmark_workloads() {
-    let steps = facade::bench_rollout_steps("rw", 40, 1.0, 2.0, 1, 10_000.0)
+    let steps = facade::bench_rollout_steps("rw", 40, 1.0, 2.0, "1", 10_000.0)
         .map_err(JsValue::from)
         .unwrap();
     assert!(steps >= 10_000.0);
-    assert!(facade::bench_rollout_steps("teleport", 40, 1.0, 2.0, 1, 10.0).is_err());
+    assert!(facade::bench_rollout_steps("teleport", 40, 1.0, 2.0, "1", 10.0).is_err());
+    assert!(facade::bench_rollout_steps("rw", 40, 1.0, 2.0, "18446744073709551616", 10.0).is_err());
     let r = facade::bench_mcts_loops(js(r#"{"n":20,"loops":10}"#), 50.0)
         .map_err(JsValue::from)
         .unwrap();

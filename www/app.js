@@ -16,18 +16,13 @@ import { updateStats } from './panels/stats.js';
 import { updateDecision } from './panels/decision.js';
 import { StepsChart } from './charts.js';
 import { BatchPanel } from './batch.js';
-import { copyLink, exportPng, exportEpisode, readEpisode } from './share.js';
+import { bindShare, replayVerdict } from './share.js';
+import { PRESETS } from './presets.js';
 import { installTestHook } from './test-hook.js';
 import { $, setText, showMessage } from './ui.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
-const PRESETS = {
-  default: { pairs: [], view: { speed: 10, race: '' } },
-  teaching: { pairs: [['n', '11'], ['sigma', '2'], ['loops', '40'], ['seed', '3'], ['start', '2,2']], view: { speed: 1, race: '' } },
-};
-const TEACHING_NOTE =
-  'Teaching view: one MCTS loop per frame. Each loop draws a practice target (◇) from the belief (the prior, or the posterior: the prior with searched cells removed), picks the neighbour with the highest UCT value, runs a random rollout from it until the rollout finds the practice target, then adds one visit to every cell the loop passed and credits each with 1/(its own steps to the practice target): the picked neighbour gets 1/τ. Pause and press ↑ to step a single loop.';
 
 async function boot() {
   let engine;
@@ -93,11 +88,7 @@ async function boot() {
     try {
       let cfg = app.config;
       if (key === 'prior' && raw === 'paint' && !app.config.paint) {
-        // Seed the canvas with a blob at the centre so the prior is valid at once.
-        painter.clear(cfg.n);
-        painter.stamp(Math.floor(cfg.n / 2) * cfg.n + Math.floor(cfg.n / 2), Math.max(1, Math.round(cfg.n / 10)), false);
-        painter.preview = null;
-        cfg = engine.setParam(cfg, 'paint', painter.encode());
+        cfg = engine.setParam(cfg, 'paint', painter.blob(cfg.n));
         $('click-start').checked = false;
       }
       app.config = engine.setParam(cfg, key, raw);
@@ -120,7 +111,7 @@ async function boot() {
     controller.dispatch({ type: 'speed', speed: app.view.speed });
     sync();
     updateUrl();
-    restart(true).then(() => name === 'teaching' && showMessage(TEACHING_NOTE));
+    restart(true).then(() => p.note && showMessage(p.note));
   }
 
   const controls = new Controls({
@@ -201,36 +192,29 @@ async function boot() {
     app.replay = null;
     app.view.speed = speed;
     controller.dispatch({ type: 'speed', speed });
-    const same = got.length === want.length && got.every((v, i) => v === want[i]);
-    const note = timed ? ' (this run used a time budget per move, so the machine’s speed changes the loops per move)' : '';
-    showMessage(same ? `Replayed exactly: the path matches the imported episode (${got.length - 1} steps).` : `The replay differs from the imported episode (${got.length - 1} vs ${want.length - 1} steps)${note}.`);
+    const { same, message } = replayVerdict(got, want, timed);
+    showMessage(message);
     document.body.dataset.replay = same ? 'match' : 'differ';
   }
 
-  const baseName = () => `torus-${app.config.searcher}-n${app.config.n}-seed${app.config.seed}`;
   $('teaching').addEventListener('click', () => applyPreset('teaching'));
   $('defaults').addEventListener('click', () => applyPreset('default'));
   $('paint-clear').addEventListener('click', () => {
     painter.clear(app.config.n);
     showMessage('Paint a prior on the grid (drag with the mouse or a finger).');
   });
-  $('copy-link').addEventListener('click', async () => {
-    updateUrl();
-    showMessage(await copyLink(location.href));
-  });
-  $('export-png').addEventListener('click', () => exportPng(boards.canvases(controller.runs.length), baseName()));
-  $('export-json').addEventListener('click', async () => {
-    const runs = await controller.dispatch({ type: 'export' });
-    if (!runs) return showMessage('Could not export: the engine is not available.');
-    const query = writeUrl(engine, app.config, app.view, { full: true, races });
-    return exportEpisode({ engineVersion: engine.version(), query, runs, name: baseName() });
-  });
-  $('import-json').addEventListener('change', async (e) => {
-    const file = e.target.files?.[0];
-    e.target.value = '';
-    if (!file) return;
-    try {
-      const { query, path } = await readEpisode(file);
+  bindShare({
+    link: () => {
+      updateUrl();
+      return location.href;
+    },
+    name: () => `torus-${app.config.searcher}-n${app.config.n}-seed${app.config.seed}`,
+    canvases: () => boards.canvases(controller.runs.length),
+    episode: async () => {
+      const runs = await controller.dispatch({ type: 'export' });
+      return runs && { engineVersion: engine.version(), query: writeUrl(engine, app.config, app.view, { full: true, races }), runs };
+    },
+    replay: async (query, path) => {
       const got = readUrl(engine, schema, query, races);
       if (got.messages.length) throw new Error(got.messages.join(' '));
       Object.assign(app, { config: got.config, view: got.view });
@@ -241,12 +225,9 @@ async function boot() {
       const ready = restart(true);
       // Set after restart() clears it, before the replay can end.
       app.replay = { path, speed: got.view.speed, timed: got.config.ms !== null };
-      await ready;
       showMessage(`Replaying the imported episode (seed ${got.config.seed}, ${path.length - 1} steps)…`);
-    } catch (err) {
-      // The run on the page stays as it was.
-      showMessage(`Could not import ${file.name}: ${err.message}`);
-    }
+      await ready;
+    },
   });
 
   if (app.config.prior === 'paint') painter.load(app.config);

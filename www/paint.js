@@ -46,6 +46,14 @@ export class Painter {
     this.preview = this.engine.colorizeValues(Float64Array.from(this.levels), 'viridis', 'linear', 60, 255);
   }
 
+  /** A painting of one blob at the centre (so prior=paint is valid at once); its text. */
+  blob(n) {
+    this.clear(n);
+    this.stamp(Math.floor(n / 2) * n + Math.floor(n / 2), Math.max(1, Math.round(n / 10)), false);
+    this.preview = null;
+    return this.encode();
+  }
+
   /** True when some cell has weight. */
   painted() {
     return this.levels.some((v) => v > 0);

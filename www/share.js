@@ -2,7 +2,7 @@
 // replay exactly. An episode file carries the page's URL query (every
 // parameter, the seed included), each run's engine config and its path.
 
-import { download } from './ui.js';
+import { $, download, showMessage } from './ui.js';
 
 export const EPISODE_FORMAT = 'torus-search-episode';
 /** Files this page writes; it reads versions 1 and 2 (both carry url_query). */
@@ -72,4 +72,47 @@ export async function readEpisode(file) {
     throw new Error('the file lacks url_query or a path of cell indices');
   }
   return { query: data.url_query, path };
+}
+
+/**
+ * Wires the share panel's buttons.
+ * @param {object} o
+ * @param {() => string} o.link            the page's link, up to date
+ * @param {() => string} o.name            a file name for this run, without extension
+ * @param {() => HTMLCanvasElement[]} o.canvases  the boards to save
+ * @param {() => Promise<object>} o.episode       { engineVersion, query, runs } or null
+ * @param {(query, path) => Promise<void>} o.replay  loads a query and replays, checking the path
+ */
+export function bindShare({ link, name, canvases, episode, replay }) {
+  $('copy-link').addEventListener('click', async () => showMessage(await copyLink(link())));
+  $('export-png').addEventListener('click', () => exportPng(canvases(), name()));
+  $('export-json').addEventListener('click', async () => {
+    const e = await episode();
+    if (!e) showMessage('Could not export: the engine is not available.');
+    else exportEpisode({ ...e, name: name() });
+  });
+  $('import-json').addEventListener('change', async (ev) => {
+    const file = ev.target.files?.[0];
+    ev.target.value = '';
+    if (!file) return;
+    try {
+      const { query, path } = await readEpisode(file);
+      await replay(query, path);
+    } catch (err) {
+      // The run on the page stays as it was.
+      showMessage(`Could not import ${file.name}: ${err.message}`);
+    }
+  });
+}
+
+/** The message after a replay ends: does `got` match the imported path `want`? */
+export function replayVerdict(got, want, timed) {
+  const same = got.length === want.length && got.every((v, i) => v === want[i]);
+  const note = timed ? ' (this run used a time budget per move, so the machine’s speed changes the loops per move)' : '';
+  return {
+    same,
+    message: same
+      ? `Replayed exactly: the path matches the imported episode (${got.length - 1} steps).`
+      : `The replay differs from the imported episode (${got.length - 1} vs ${want.length - 1} steps)${note}.`,
+  };
 }

@@ -4,6 +4,7 @@
 //
 //   ready()            resolves (to true when runs exist) once the newest reset has finished
 //   state()            the controller's state: idle | running | paused | found | capped | error
+//   speed()            the controller's speed: loops per frame, or 'max'
 //   runs()             a snapshot per run: { label, config, searcher, deliberates, n, start,
 //                      target, optimal, status, steps, pathLen, work, rolloutSteps }
 //   path(i = 0)        run i's path so far (cells, start first)
@@ -16,6 +17,7 @@ export function installTestHook({ controller, engine, batch }) {
   window.torusTest = {
     ready: () => controller.whenReady(),
     state: () => controller.state,
+    speed: () => controller.speed,
     runs: () =>
       controller.runs.map((r) => ({
         label: r.label,

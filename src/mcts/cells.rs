@@ -110,16 +110,6 @@ impl CellTable {
             selected: [0; 4],
         }
     }
-
-    /// Visit counts per cell (the visit-count heatmap).
-    pub fn visits(&self) -> &[u32] {
-        &self.visits
-    }
-
-    /// Summed rewards per cell.
-    pub fn rewards(&self) -> &[f64] {
-        &self.reward
-    }
 }
 
 impl Stats for CellTable {

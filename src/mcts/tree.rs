@@ -47,7 +47,6 @@ pub struct Tree {
     path: Vec<u32>,
     max_nodes: usize,
     selected: [u32; 4],
-    full: bool,
 }
 
 impl Tree {
@@ -60,23 +59,7 @@ impl Tree {
             path: Vec::new(),
             max_nodes: max_nodes.max(MIN_MAX_NODES) as usize,
             selected: [0; 4],
-            full: false,
         }
-    }
-
-    /// Nodes in the arena.
-    pub fn len(&self) -> usize {
-        self.nodes.len()
-    }
-
-    /// True when the arena holds no node.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
-    }
-
-    /// True once the arena cap stopped an expansion.
-    pub fn hit_cap(&self) -> bool {
-        self.full
     }
 
     /// Adds each node's visits to its cell in `out` (after zeroing it).
@@ -172,9 +155,6 @@ impl Stats for Tree {
                 }
                 Some((id, true))
             } else {
-                if k > 0 {
-                    self.full = true;
-                }
                 match self.select_child(node, env) {
                     Some(i) => {
                         if depth == 0 {
@@ -261,6 +241,5 @@ impl Stats for Tree {
             }
         }
         std::mem::swap(&mut self.nodes, &mut self.scratch);
-        self.full = false;
     }
 }

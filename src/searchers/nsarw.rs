@@ -95,9 +95,4 @@ impl Nsarw {
     pub fn counts(&self) -> &[u32] {
         &self.count
     }
-
-    /// Visits of `cell` in the current walk.
-    pub fn visits(&self, cell: u32) -> u32 {
-        self.get(cell)
-    }
 }
