@@ -170,15 +170,21 @@ pub fn summarize<T: Value>(values: &[T]) -> Extent {
         sum: 0.0,
         nonzero: 0,
     };
+    // Plain comparisons, not f64::min/max: `clean` leaves no NaN, and wasm's
+    // min/max instructions propagate NaN, so f64::min costs extra selects.
     for &v in values {
         let v = clean(v.to_f64());
-        s.min = s.min.min(v);
-        if v > 0.0 {
-            s.min_nonzero = s.min_nonzero.min(v);
-        }
-        s.max = s.max.max(v);
+        let positive = v > 0.0;
+        let nz = if positive { v } else { f64::INFINITY };
+        s.min = if v < s.min { v } else { s.min };
+        s.min_nonzero = if nz < s.min_nonzero {
+            nz
+        } else {
+            s.min_nonzero
+        };
+        s.max = if v > s.max { v } else { s.max };
         s.sum += v;
-        s.nonzero += (v > 0.0) as usize;
+        s.nonzero += positive as usize;
     }
     if values.is_empty() {
         s.min = 0.0;
@@ -273,53 +279,36 @@ impl Colorizer {
             Alpha::Ramp { lo, hi } => (lo as f64, hi as f64),
         };
         let transparent_zero = matches!(alpha, Alpha::Ramp { .. });
-        // Precompute the map t -> pixel for all 256 levels.
-        let mut px = [[0u8; 4]; 256];
+        // Precompute the map level -> pixel for all 256 levels, each pixel
+        // as the u32 whose bytes in memory are R, G, B, A.
+        let mut px = [0u32; 256];
         for (i, p) in px.iter_mut().enumerate() {
             let t = i as f64 / 255.0;
             let a = (lo + (hi - lo) * t).round().clamp(0.0, 255.0) as u8;
             let c = self.lut[i];
-            *p = [c[0], c[1], c[2], a];
+            *p = u32::from_ne_bytes([c[0], c[1], c[2], a]);
         }
-        let zero_px = if transparent_zero {
-            [0, 0, 0, 0]
-        } else {
-            px[0]
-        };
+        let zero = if transparent_zero { 0 } else { px[0] };
         if max <= 0.0 {
-            for chunk in out.chunks_exact_mut(4) {
-                chunk.copy_from_slice(&zero_px);
-            }
+            fill(values, out, &px, zero, |_| 0);
             return summary;
         }
         match scale {
             Scale::Linear => {
                 let k = 255.0 / max;
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        // At least level 1, so a tiny nonzero value stays visible.
-                        px[((v * k + LEVEL_EPS) as usize).clamp(1, 255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                // At least level 1, so a tiny nonzero value stays visible.
+                fill(values, out, &px, zero, |v| {
+                    ((v * k + LEVEL_EPS) as usize).clamp(1, 255)
+                });
             }
             Scale::Stretch => {
                 let lo = summary.min_nonzero;
                 let span = max - lo;
                 let k = if span > 0.0 { 255.0 / span } else { 0.0 };
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        // Level 0 is the minimum: transparent in ramp mode.
-                        px[(((v - lo) * k + LEVEL_EPS) as usize).min(255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                // Level 0 is the minimum: transparent in ramp mode.
+                fill(values, out, &px, zero, |v| {
+                    (((v - lo) * k + LEVEL_EPS) as usize).min(255)
+                });
             }
             Scale::Log { floor } => {
                 let floor = if floor > 0.0 && floor.is_finite() {
@@ -329,19 +318,45 @@ impl Colorizer {
                 };
                 let inv_floor = 1.0 / floor;
                 let k = 255.0 / fast_log2(1.0 + max * inv_floor) as f64;
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        let t = fast_log2(1.0 + v * inv_floor) as f64 * k;
-                        px[(t as usize).clamp(1, 255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                fill(values, out, &px, zero, |v| {
+                    ((fast_log2(1.0 + v * inv_floor) as f64 * k) as usize).clamp(1, 255)
+                });
             }
         }
         summary
+    }
+}
+
+/// Writes `px[level(v)]` for each positive value and `zero` for the rest,
+/// one u32 store a pixel (byte by byte only if `out` is not 4-aligned): the
+/// recolouring of big layers is most of what a frame costs.
+#[inline(always)]
+fn fill<T: Value>(
+    values: &[T],
+    out: &mut [u8],
+    px: &[u32; 256],
+    zero: u32,
+    level: impl Fn(f64) -> usize,
+) {
+    let pixel = |v: T| {
+        let v = clean(v.to_f64());
+        if v > 0.0 {
+            px[level(v).min(255)]
+        } else {
+            zero
+        }
+    };
+    // SAFETY: every 4 bytes are a valid u32, and align_to_mut splits off
+    // any unaligned ends.
+    let (head, words, tail) = unsafe { out.align_to_mut::<u32>() };
+    if head.is_empty() && tail.is_empty() {
+        for (&v, w) in values.iter().zip(words.iter_mut()) {
+            *w = pixel(v);
+        }
+    } else {
+        for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
+            chunk.copy_from_slice(&pixel(v).to_ne_bytes());
+        }
     }
 }
 
