@@ -23,7 +23,7 @@ const SELF = fileURLToPath(import.meta.url);
 const PKG = path.join(ROOT, 'www/pkg');
 const BIN = path.join(ROOT, 'target/release/torus-search');
 /** The default workload: a long N=100 episode, as in the browser benchmark. */
-const DEFAULT_CONFIG = { n: 100, prior: { kind: 'gaussian', sigma: 15 }, loops: 100, belief: 'posterior' };
+const DEFAULT_CONFIG = { n: 100, sigma: 15, loops: 100, belief: 'posterior' };
 
 function fail(msg) {
   console.error(`error: ${msg}`);
@@ -34,10 +34,10 @@ const args = process.argv.slice(2);
 
 if (args[0] === '--child') {
   // Runs inside valgrind: `loops` loops of the episode in one wasm call.
-  const [, configJson, seed, loops] = args;
+  const [, configJson, loops] = args;
   const wasm = await import(path.join(PKG, 'torus_search.js'));
   wasm.initSync({ module: readFileSync(path.join(PKG, 'torus_search_bg.wasm')) });
-  wasm.benchMctsLoops(JSON.parse(configJson), BigInt(seed), Number(loops));
+  wasm.benchMctsLoops(JSON.parse(configJson), Number(loops));
   process.exit(0);
 }
 
@@ -62,10 +62,10 @@ if (configFile !== null) {
     fail(`--config ${configFile}: ${err.message}`);
   }
 }
-const seedText = option('--seed') ?? '1';
-if (!/^\d{1,20}$/.test(seedText) || BigInt(seedText) >= 1n << 64n) {
-  fail(`--seed must be an integer in [0, 2^64), got ${JSON.stringify(seedText)}`);
-}
+// The seed goes into the config; the native check below reads it (and
+// names it if it is out of range).
+const seedText = option('--seed') ?? String(config.seed ?? '1');
+config = { ...config, seed: seedText };
 const loopsText = option('--loops') ?? '2000..6000';
 const m = /^(\d{1,9})\.\.(\d{1,9})$/.exec(loopsText);
 const [a, b] = m ? [Number(m[1]), Number(m[2])] : [NaN, NaN];
@@ -81,7 +81,7 @@ if (spawnSync('valgrind', ['--version']).status !== 0) fail('valgrind is missing
 const dir = mkdtempSync(path.join(tmpdir(), 'torus-instr-'));
 const file = path.join(dir, 'config.json');
 writeFileSync(file, JSON.stringify(config));
-const nativeArgs = (loops) => ['bench', '--json', '--episode', file, '--loops', `0..${loops}`, '--seed', seedText];
+const nativeArgs = (loops) => ['bench', '--json', '--episode', file, '--loops', `0..${loops}`];
 try {
   execFileSync(BIN, nativeArgs(1), { stdio: ['ignore', 'ignore', 'pipe'], encoding: 'utf8' });
 } catch (err) {
@@ -99,7 +99,7 @@ function instructions(cmd, cmdArgs) {
   return Number(hit[1]);
 }
 
-const wasmArgs = (loops) => ['--no-liftoff', SELF, '--child', JSON.stringify(config), seedText, String(loops)];
+const wasmArgs = (loops) => ['--no-liftoff', SELF, '--child', JSON.stringify(config), String(loops)];
 const perLoop = (run) => (run(b) - run(a)) / (b - a);
 const wasm = perLoop((loops) => instructions(process.execPath, wasmArgs(loops)));
 const native = perLoop((loops) => instructions(BIN, nativeArgs(loops)));

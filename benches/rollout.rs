@@ -10,7 +10,6 @@ use torus_search::bench::{mcts_loops, rollout_steps};
 use torus_search::config::Config;
 use torus_search::episode::Episode;
 use torus_search::mcts::Variant;
-use torus_search::prior::PriorSpec;
 use torus_search::searchers::PolicyKind;
 
 const N: u32 = 40;
@@ -43,20 +42,20 @@ fn mcts(c: &mut Criterion) {
         for sigma in [0.0, 5.0] {
             let cfg = Config {
                 variant,
-                prior: PriorSpec::Gaussian { sigma },
+                sigma,
                 ..Config::default()
             };
             let name = format!("{}_sigma{sigma}", variant.name());
             g.throughput(Throughput::Elements(2_000));
             g.bench_function(BenchmarkId::new("loops", &name), |b| {
-                b.iter(|| black_box(mcts_loops(&cfg, 1, 2_000).expect("valid")))
+                b.iter(|| black_box(mcts_loops(&cfg, 2_000).expect("valid")))
             });
         }
     }
     g.throughput(Throughput::Elements(1));
     for sigma in [0.0, 5.0] {
         let cfg = Config {
-            prior: PriorSpec::Gaussian { sigma },
+            sigma,
             ..Config::default()
         };
         let mut trial = 0u64;
@@ -65,7 +64,7 @@ fn mcts(c: &mut Criterion) {
             |b| {
                 b.iter(|| {
                     trial += 1;
-                    black_box(Episode::trial(&cfg, 1, trial).expect("valid").run())
+                    black_box(Episode::trial(&cfg, trial).expect("valid").run())
                 })
             },
         );

@@ -29,13 +29,13 @@ const wasm = await import(path.join(pkg, 'torus_search.js'));
 wasm.initSync({ module: readFileSync(path.join(pkg, 'torus_search_bg.wasm')) });
 
 function rate(policy, chunk) {
-  for (let i = 0; i < 5; i++) wasm.benchRolloutSteps(policy, 40, 1, 2, BigInt(100 + i), chunk);
+  for (let i = 0; i < 5; i++) wasm.benchRolloutSteps(policy, 40, 1, 2, String(100 + i), chunk);
   let steps = 0;
   let seed = 1n;
   const t0 = performance.now();
   let t = t0;
   while (t - t0 < seconds * 1000) {
-    steps += wasm.benchRolloutSteps(policy, 40, 1, 2, seed++, chunk);
+    steps += wasm.benchRolloutSteps(policy, 40, 1, 2, String(seed++), chunk);
     t = performance.now();
   }
   return steps / ((t - t0) / 1000);

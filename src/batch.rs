@@ -1,28 +1,47 @@
-//! Batches of trials and run fingerprints.
+//! Batches of trials, their report, and run fingerprints. The CLI, the
+//! page's worker pool and the tests all run trials through [`trial`].
 
 use crate::config::{Config, ConfigError};
 use crate::episode::{Episode, TrialResult};
+use crate::stats::Summary;
 
-/// Runs trials `first..first + count` of `cfg` with `seed`, in order.
+/// Runs trial `index` of `cfg` to the end.
 ///
-/// Trial `i` depends only on `(cfg, seed, i)`, so any split of a batch
-/// (threads, workers, chunks) gives the same results.
+/// Trial `i` depends only on `(cfg, i)` (the seed is part of the config),
+/// so any split of a batch (threads, workers, chunks) gives the same results.
 ///
 /// # Errors
 /// A [`ConfigError`] naming the first invalid field.
-pub fn run_trials(
-    cfg: &Config,
-    seed: u64,
-    first: u64,
-    count: u64,
-) -> Result<Vec<TrialResult>, ConfigError> {
-    cfg.validate()?;
-    (first..first + count)
-        .map(|i| Episode::trial(cfg, seed, i).map(|mut e| e.run()))
-        .collect()
+pub fn trial(cfg: &Config, index: u64) -> Result<TrialResult, ConfigError> {
+    Ok(Episode::trial(cfg, index)?.run())
 }
 
-/// FNV-1a over 32-bit words.
+/// Runs trials `first..first + count` of `cfg`, in order.
+///
+/// # Errors
+/// A [`ConfigError`] naming the first invalid field.
+pub fn run_trials(cfg: &Config, first: u64, count: u64) -> Result<Vec<TrialResult>, ConfigError> {
+    cfg.validate()?;
+    (first..first + count).map(|i| trial(cfg, i)).collect()
+}
+
+/// What a batch reports: the summary's fields, then how it ran.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Report<'a> {
+    /// The statistics.
+    #[serde(flatten)]
+    pub summary: &'a Summary,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Threads or workers used (results do not depend on it).
+    pub threads: usize,
+    /// The seed (also in `config`).
+    pub seed: u64,
+    /// The full resolved configuration.
+    pub config: &'a Config,
+}
+
+/// FNV-1a over 64-bit words.
 #[derive(Clone, Copy, Debug)]
 pub struct Fnv(u64);
 
@@ -52,10 +71,10 @@ impl Fnv {
 ///
 /// # Errors
 /// A [`ConfigError`] naming the first invalid field.
-pub fn fingerprint(cfg: &Config, seed: u64, trials: u64) -> Result<u64, ConfigError> {
+pub fn fingerprint(cfg: &Config, trials: u64) -> Result<u64, ConfigError> {
     let mut h = Fnv::default();
     for i in 0..trials {
-        let mut e = Episode::trial(cfg, seed, i)?;
+        let mut e = Episode::trial(cfg, i)?;
         let r = e.run();
         for &c in e.path() {
             h.word(c as u64);

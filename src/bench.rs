@@ -2,7 +2,7 @@
 //! with its own clock: `Instant` natively, `performance.now()` in wasm), so
 //! the same work is measured on every platform.
 
-use crate::config::{Config, ConfigError};
+use crate::config::{self, Config, ConfigError, Value};
 use crate::episode::Episode;
 use crate::lattice::{Sensor, Torus};
 use crate::prior::{PriorSpec, TargetPrior};
@@ -23,12 +23,16 @@ pub fn rollout_steps(
     seed: u64,
     min_steps: u64,
 ) -> Result<u64, ConfigError> {
-    let torus = Torus::new(n).map_err(|e| ConfigError::new("n", n, e.to_string()))?;
-    let mut sensor =
-        Sensor::new(&torus, rv).map_err(|e| ConfigError::new("rv", rv, e.to_string()))?;
-    if !(mu > 1.0 && mu <= 3.0) {
-        return Err(ConfigError::new("mu", mu, "a number in (1, 3]"));
+    for (key, v) in [
+        ("n", Value::Int(n as u64)),
+        ("rv", Value::Float(rv)),
+        ("mu", Value::Float(mu)),
+    ] {
+        let p = config::param(key).expect("a schema parameter");
+        p.kind.check(p.key, &v)?;
     }
+    let torus = Torus::new(n).expect("n was checked");
+    let mut sensor = Sensor::new(&torus, rv).expect("rv was checked");
     let uniform =
         TargetPrior::new(&torus, &PriorSpec::Uniform).expect("uniform prior is always valid");
     let mut policy = Policy::new(kind, &torus, mu, 0.2);
@@ -51,8 +55,8 @@ pub fn rollout_steps(
 ///
 /// # Errors
 /// A [`ConfigError`] naming the first invalid field.
-pub fn mcts_loops(cfg: &Config, seed: u64, loops: u64) -> Result<(u64, u64, u64), ConfigError> {
-    let mut r = LoopRunner::new(cfg, seed)?;
+pub fn mcts_loops(cfg: &Config, loops: u64) -> Result<(u64, u64, u64), ConfigError> {
+    let mut r = LoopRunner::new(cfg)?;
     r.run(loops)?;
     Ok((r.loops, r.moves, r.episodes))
 }
@@ -62,7 +66,6 @@ pub fn mcts_loops(cfg: &Config, seed: u64, loops: u64) -> Result<(u64, u64, u64)
 /// natively and in the browser alike.
 pub struct LoopRunner {
     cfg: Config,
-    seed: u64,
     trial: u64,
     episode: Episode,
     /// Loops run so far.
@@ -78,20 +81,19 @@ impl LoopRunner {
     ///
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field, or the searcher if
-    /// it is not MCTS (walkers have no loops).
-    pub fn new(cfg: &Config, seed: u64) -> Result<LoopRunner, ConfigError> {
-        if cfg.searcher != crate::config::SearcherKind::Mcts {
+    /// it does not deliberate (it has no loops).
+    pub fn new(cfg: &Config) -> Result<LoopRunner, ConfigError> {
+        if !cfg.searcher.info().deliberates {
             return Err(ConfigError::new(
                 "searcher",
-                cfg.searcher.name(),
-                "mcts for a loop benchmark",
+                cfg.searcher,
+                "a searcher that deliberates (mcts) for a loop benchmark",
             ));
         }
         Ok(LoopRunner {
             cfg: cfg.clone(),
-            seed,
             trial: 0,
-            episode: Episode::trial(cfg, seed, 0)?,
+            episode: Episode::trial(cfg, 0)?,
             loops: 0,
             moves: 0,
             episodes: 0,
@@ -114,7 +116,7 @@ impl LoopRunner {
             if self.episode.status() != crate::episode::Status::Running {
                 self.episodes += 1;
                 self.trial += 1;
-                self.episode = Episode::trial(&self.cfg, self.seed, self.trial)?;
+                self.episode = Episode::trial(&self.cfg, self.trial)?;
             }
         }
         Ok(())

@@ -1,188 +1,22 @@
-//! Argument parsing, parallel batches and output for the native binary.
+//! The native command line: `torus-search run` and `torus-search bench`.
+//!
+//! `run`'s flags are built from the configuration schema
+//! (`config::PARAMS`): each parameter's flag, help, range and default come
+//! from there, and its text is parsed there, as the page's URL is. Trials
+//! run in parallel through `batch::trial`, and `--json` prints the core's
+//! `batch::Report`.
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Arg, ArgAction, ArgMatches, Command};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
-use torus_search::config::{Belief, Config, ConfigError, SearcherKind};
+use torus_search::batch;
+use torus_search::config::{self, Config, ConfigError, Kind, PARAMS, TRIALS};
 use torus_search::episode::{Episode, TrialResult};
-use torus_search::mcts::{FinalRule, Variant};
-use torus_search::prior::PriorSpec;
+use torus_search::mcts::Variant;
 use torus_search::searchers::PolicyKind;
 use torus_search::stats::Summary;
-
-#[derive(Parser, Debug)]
-#[command(
-    name = "torus-search",
-    version,
-    about = "MCTS for a single-target search game on a periodic 2-D lattice"
-)]
-struct Cli {
-    #[command(subcommand)]
-    cmd: Cmd,
-}
-
-#[derive(Subcommand, Debug)]
-enum Cmd {
-    /// Run trials and summarise them.
-    Run(RunArgs),
-    /// Measure this machine's throughput.
-    Bench {
-        /// Print one JSON object.
-        #[arg(long)]
-        json: bool,
-        /// Scale every workload (1 = about 10 s in all).
-        #[arg(long, default_value_t = 1.0)]
-        scale: f64,
-        /// Instead of the suite: time loops FROM..TO of one MCTS episode whose
-        /// core config (JSON, as the page exports it) is in this file. The
-        /// browser benchmark uses it to time the very loops the page ran.
-        #[arg(long, value_name = "FILE", requires = "loops")]
-        episode: Option<std::path::PathBuf>,
-        /// The loop window for --episode, as FROM..TO.
-        #[arg(long, value_name = "FROM..TO", requires = "episode")]
-        loops: Option<String>,
-        /// The seed for --episode.
-        #[arg(long, default_value_t = 1, requires = "episode")]
-        seed: u64,
-    },
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum PriorArg {
-    Delta,
-    Gaussian,
-    Uniform,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum SearcherArg {
-    Mcts,
-    Rw,
-    Levy,
-    Nsarw,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum VariantArg {
-    Cells,
-    Tree,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum RolloutArg {
-    Rw,
-    Levy,
-    Nsarw,
-    Greedy,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum BeliefArg {
-    Prior,
-    Posterior,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum FinalArg {
-    Visits,
-    Mean,
-    Uct,
-}
-
-fn parse_cell(s: &str) -> Result<[u32; 2], String> {
-    let (x, y) = s
-        .split_once(',')
-        .ok_or_else(|| format!("expected x,y (1-based), got '{s}'"))?;
-    let p = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|_| format!("expected x,y with positive integers, got '{s}'"))
-    };
-    Ok([p(x)?, p(y)?])
-}
-
-#[derive(Args, Debug)]
-struct RunArgs {
-    /// Who searches.
-    #[arg(long, value_enum, default_value = "mcts")]
-    searcher: SearcherArg,
-    /// MCTS variant: per-cell statistics (the paper) or a search tree.
-    #[arg(long, value_enum, default_value = "cells")]
-    variant: VariantArg,
-    /// MCTS rollout (default) policy.
-    #[arg(long, value_enum, default_value = "rw")]
-    rollout: RolloutArg,
-    /// Where practice targets come from.
-    #[arg(long, value_enum, default_value = "posterior")]
-    belief: BeliefArg,
-    /// Lattice side N (3..=1024).
-    #[arg(long, default_value_t = 40, allow_negative_numbers = true)]
-    n: i64,
-    /// Target prior.
-    #[arg(long, value_enum, conflicts_with = "target")]
-    prior: Option<PriorArg>,
-    /// Gaussian standard deviation (>= 0; inf = uniform).
-    #[arg(long, allow_negative_numbers = true, conflicts_with = "target")]
-    sigma: Option<f64>,
-    /// Detection radius r_v (>= 0).
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    rv: f64,
-    /// Start cell x,y (1-based).
-    #[arg(long, default_value = "1,1", value_parser = parse_cell)]
-    start: [u32; 2],
-    /// A fixed target cell x,y (1-based).
-    #[arg(long, value_parser = parse_cell)]
-    target: Option<[u32; 2]>,
-    /// Place the target by the prior but plan with a delta prior on it.
-    #[arg(long)]
-    known: bool,
-    /// MCTS loops per real move.
-    #[arg(long, allow_negative_numbers = true)]
-    loops: Option<i64>,
-    /// MCTS decision time per real move in milliseconds (instead of --loops).
-    #[arg(long, conflicts_with = "loops", allow_negative_numbers = true)]
-    decision_ms: Option<f64>,
-    /// UCT exploration constant.
-    #[arg(long, default_value_t = std::f64::consts::SQRT_2, allow_negative_numbers = true)]
-    c: f64,
-    /// Lévy exponent μ in (1, 3].
-    #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
-    mu: f64,
-    /// Greedy rollout noise ε in [0, 1].
-    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
-    epsilon: f64,
-    /// Final-move rule.
-    #[arg(long = "final", value_enum, default_value = "visits")]
-    final_rule: FinalArg,
-    /// Rollout step cap.
-    #[arg(long, default_value_t = 10_000, allow_negative_numbers = true)]
-    rollout_cap: i64,
-    /// Episode step cap.
-    #[arg(long, default_value_t = 100_000, allow_negative_numbers = true)]
-    step_cap: i64,
-    /// `cells`: clear the statistics before each real move.
-    #[arg(long)]
-    reset_each_move: bool,
-    /// `tree`: arena cap in nodes.
-    #[arg(long, default_value_t = torus_search::mcts::tree::DEFAULT_MAX_NODES as i64, allow_negative_numbers = true)]
-    tree_nodes: i64,
-    /// Number of trials.
-    #[arg(long, default_value_t = 1000, allow_negative_numbers = true)]
-    trials: i64,
-    /// Seed: the run is a pure function of the config and the seed.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
-    /// Worker threads (default: all cores). Results do not depend on it.
-    #[arg(long, allow_negative_numbers = true)]
-    threads: Option<i64>,
-    /// Print exactly one JSON object on stdout.
-    #[arg(long)]
-    json: bool,
-}
-
-struct UsageError(String);
 
 /// `println!` that ends the process quietly when stdout is closed (as in
 /// `torus-search bench | head -1`) instead of panicking.
@@ -195,15 +29,16 @@ macro_rules! out {
     }};
 }
 
-fn flag(field: &str) -> String {
-    // Config fields are named after their flags, except the decision time.
-    match field {
-        "ms" => "--decision-ms".into(),
-        other => format!("--{other}"),
-    }
+/// A message for stderr; the process exits with code 2.
+struct UsageError(String);
+
+/// The flag of parameter `key`, with its dashes.
+fn flag(key: &str) -> String {
+    config::param(key).map_or_else(|| format!("--{key}"), |p| format!("--{}", p.flag()))
 }
 
-fn from_config(e: ConfigError) -> UsageError {
+/// A configuration error worded for the command line.
+fn usage(e: ConfigError) -> UsageError {
     UsageError(format!(
         "{} must be {}, got {}",
         flag(e.field),
@@ -212,120 +47,177 @@ fn from_config(e: ConfigError) -> UsageError {
     ))
 }
 
-fn to_u32(name: &str, v: i64, lo: u32, hi: u32) -> Result<u32, UsageError> {
-    if v < lo as i64 || v > hi as i64 {
-        return Err(UsageError(format!(
-            "{name} must be an integer in {lo}..={hi}, got {v}"
-        )));
-    }
-    Ok(v as u32)
+fn command() -> Command {
+    Command::new("torus-search")
+        .version(env!("CARGO_PKG_VERSION"))
+        .about("MCTS for a single-target search game on a periodic 2-D lattice")
+        .subcommand_required(true)
+        .arg_required_else_help(true)
+        .subcommand(run_command())
+        .subcommand(bench_command())
 }
 
-fn build_config(a: &RunArgs) -> Result<(Config, u64, usize), UsageError> {
-    use torus_search::config::limits;
-    let n = to_u32(
-        "--n",
-        a.n,
-        torus_search::lattice::MIN_N,
-        torus_search::lattice::MAX_N,
-    )?;
-    let prior = match (a.prior, a.sigma) {
-        (Some(PriorArg::Delta), None) => PriorSpec::Delta { cell: None },
-        (Some(PriorArg::Uniform), None) => PriorSpec::Uniform,
-        (Some(PriorArg::Delta | PriorArg::Uniform), Some(_)) => {
-            return Err(UsageError(
-                "--sigma only applies to --prior gaussian".into(),
-            ))
+fn run_command() -> Command {
+    let mut cmd = Command::new("run").about("Run trials and summarise them.");
+    for p in PARAMS {
+        let default = match p.kind {
+            Kind::Bool => "off".to_string(),
+            _ if p.default.text().is_empty() => "none".to_string(),
+            _ => p.default.text(),
+        };
+        let help = match p.kind {
+            Kind::Bool => format!("{} [default: {default}]", p.help),
+            _ => format!("{}: {} [default: {default}]", p.help, p.kind.allowed()),
+        };
+        let mut arg = Arg::new(p.key).long(p.flag()).help(help);
+        arg = match p.kind {
+            Kind::Bool => arg.action(ArgAction::SetTrue),
+            _ => arg
+                .value_name(p.key.to_uppercase())
+                .allow_hyphen_values(true)
+                .action(ArgAction::Set),
+        };
+        for a in p.aliases {
+            arg = arg.visible_alias(*a);
         }
-        (_, s) => {
-            let sigma = s.unwrap_or(5.0);
-            if sigma.is_nan() || sigma < 0.0 {
-                return Err(UsageError(format!(
-                    "--sigma must be a number >= 0 (inf means uniform), got {sigma}"
-                )));
-            }
-            PriorSpec::Gaussian { sigma }
-        }
-    };
-    let is_mcts = matches!(a.searcher, SearcherArg::Mcts);
-    if !is_mcts && (a.loops.is_some() || a.decision_ms.is_some()) {
-        return Err(UsageError(
-            "--loops and --decision-ms only apply to --searcher mcts".into(),
-        ));
+        cmd = cmd.arg(arg);
     }
-    let loops = match a.loops {
-        Some(l) => to_u32("--loops", l, limits::LOOPS.0, limits::LOOPS.1)?,
-        None => 100,
-    };
-    let trials = to_u32("--trials", a.trials, 1, 100_000_000)? as u64;
-    let threads = match a.threads {
-        Some(t) => to_u32("--threads", t, 1, 1024)? as usize,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-    };
-    let cfg = Config {
-        n,
-        prior,
-        rv: a.rv,
-        start: a.start,
-        target: a.target,
-        known: a.known,
-        searcher: match a.searcher {
-            SearcherArg::Mcts => SearcherKind::Mcts,
-            SearcherArg::Rw => SearcherKind::Rw,
-            SearcherArg::Levy => SearcherKind::Levy,
-            SearcherArg::Nsarw => SearcherKind::Nsarw,
-        },
-        variant: match a.variant {
-            VariantArg::Cells => Variant::Cells,
-            VariantArg::Tree => Variant::Tree,
-        },
-        rollout: match a.rollout {
-            RolloutArg::Rw => PolicyKind::Rw,
-            RolloutArg::Levy => PolicyKind::Levy,
-            RolloutArg::Nsarw => PolicyKind::Nsarw,
-            RolloutArg::Greedy => PolicyKind::Greedy,
-        },
-        belief: match a.belief {
-            BeliefArg::Prior => Belief::Prior,
-            BeliefArg::Posterior => Belief::Posterior,
-        },
-        loops,
-        decision_ms: a.decision_ms,
-        c: a.c,
-        mu: a.mu,
-        epsilon: a.epsilon,
-        final_rule: match a.final_rule {
-            FinalArg::Visits => FinalRule::Visits,
-            FinalArg::Mean => FinalRule::Mean,
-            FinalArg::Uct => FinalRule::Uct,
-        },
-        rollout_cap: to_u32(
-            "--rollout-cap",
-            a.rollout_cap,
-            limits::ROLLOUT_CAP.0,
-            limits::ROLLOUT_CAP.1,
-        )?,
-        step_cap: to_u32(
-            "--step-cap",
-            a.step_cap,
-            limits::STEP_CAP.0,
-            limits::STEP_CAP.1,
-        )?,
-        reset_each_move: a.reset_each_move,
-        tree_nodes: to_u32(
-            "--tree-nodes",
-            a.tree_nodes,
-            torus_search::mcts::tree::MIN_MAX_NODES,
-            torus_search::mcts::tree::MAX_MAX_NODES,
-        )?,
-        keep_traces: 0,
-    };
-    cfg.validate().map_err(from_config)?;
-    Ok((cfg, trials, threads))
+    cmd.arg(
+        Arg::new(TRIALS.key)
+            .long(TRIALS.key)
+            .value_name("COUNT")
+            .allow_hyphen_values(true)
+            .help(format!(
+                "{}: {} [default: {}]",
+                TRIALS.help,
+                TRIALS.kind.allowed(),
+                TRIALS.default.text()
+            )),
+    )
+    .arg(
+        Arg::new("threads")
+            .long("threads")
+            .value_name("K")
+            .allow_hyphen_values(true)
+            .help("worker threads: an integer in 1..=1024 [default: all cores]; results do not depend on it"),
+    )
+    .arg(
+        Arg::new("json")
+            .long("json")
+            .action(ArgAction::SetTrue)
+            .help("print exactly one JSON object: the summary, how it ran, and the config"),
+    )
+    .arg(
+        Arg::new("dry-run")
+            .long("dry-run")
+            .action(ArgAction::SetTrue)
+            .help("print the resolved config as JSON and run nothing"),
+    )
 }
 
-fn run(a: &RunArgs) -> Result<(), UsageError> {
-    let (cfg, trials, threads) = build_config(a)?;
+fn bench_command() -> Command {
+    Command::new("bench")
+        .about("Measure this machine's throughput.")
+        .arg(
+            Arg::new("json")
+                .long("json")
+                .action(ArgAction::SetTrue)
+                .help("print one JSON object"),
+        )
+        .arg(
+            Arg::new("scale")
+                .long("scale")
+                .value_name("S")
+                .allow_hyphen_values(true)
+                .help("scale every workload (1 = about 10 s in all): a number in (0, 1000] [default: 1]"),
+        )
+        .arg(
+            Arg::new("episode")
+                .long("episode")
+                .value_name("FILE")
+                .requires("loops")
+                .help("instead of the suite: time loops FROM..TO of one MCTS episode whose config (JSON, as the page exports it) is in this file"),
+        )
+        .arg(
+            Arg::new("loops")
+                .long("loops")
+                .value_name("FROM..TO")
+                .requires("episode")
+                .help("the loop window for --episode"),
+        )
+        .arg(
+            Arg::new("seed")
+                .long("seed")
+                .value_name("SEED")
+                .requires("episode")
+                .help("the seed for --episode, instead of the file's"),
+        )
+}
+
+/// The config that `run`'s flags describe: each given flag is parsed by its
+/// parameter, must apply to the resulting config, and the whole is validated.
+fn build_config(m: &ArgMatches) -> Result<Config, UsageError> {
+    let mut cfg = Config::default();
+    let mut given = Vec::new();
+    for p in PARAMS {
+        let raw = match p.kind {
+            Kind::Bool => m.get_flag(p.key).then(|| "1".to_string()),
+            _ => m.get_one::<String>(p.key).cloned(),
+        };
+        if let Some(raw) = raw {
+            cfg.set(p.key, &raw).map_err(usage)?;
+            given.push(p);
+        }
+    }
+    for p in given {
+        if !p.applies_to(&cfg) {
+            return Err(UsageError(format!(
+                "--{} does not apply to this configuration: {}",
+                p.flag(),
+                p.not_applying(&cfg)
+            )));
+        }
+    }
+    cfg.validate().map_err(usage)?;
+    Ok(cfg)
+}
+
+fn int_flag(m: &ArgMatches, name: &str, lo: u64, hi: u64) -> Result<Option<u64>, UsageError> {
+    m.get_one::<String>(name)
+        .map(|raw| {
+            raw.trim()
+                .parse::<u64>()
+                .ok()
+                .filter(|v| (lo..=hi).contains(v))
+                .ok_or_else(|| {
+                    UsageError(format!(
+                        "--{name} must be an integer in {lo}..={hi}, got {raw}"
+                    ))
+                })
+        })
+        .transpose()
+}
+
+fn run(m: &ArgMatches) -> Result<(), UsageError> {
+    let cfg = build_config(m)?;
+    if m.get_flag("dry-run") {
+        out!(
+            "{}",
+            serde_json::to_string(&cfg).expect("a config serialises")
+        );
+        return Ok(());
+    }
+    let trials = match m.get_one::<String>(TRIALS.key) {
+        Some(raw) => match TRIALS.kind.parse(TRIALS.key, raw).map_err(usage)? {
+            config::Value::Int(t) => t,
+            _ => unreachable!("trials is an integer parameter"),
+        },
+        None => 1000,
+    };
+    let threads = int_flag(m, "threads", 1, 1024)?.map_or_else(
+        || std::thread::available_parallelism().map_or(1, |n| n.get()),
+        |t| t as usize,
+    );
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -344,9 +236,7 @@ fn run(a: &RunArgs) -> Result<(), UsageError> {
         (0..trials)
             .into_par_iter()
             .map(|i| {
-                let r = Episode::trial(&cfg, a.seed, i)
-                    .expect("config validated above")
-                    .run();
+                let r = batch::trial(&cfg, i).expect("the config was validated above");
                 if !shown.load(Ordering::Relaxed)
                     && t0.elapsed().as_secs_f64() > 1.0
                     && !shown.swap(true, Ordering::Relaxed)
@@ -361,69 +251,45 @@ fn run(a: &RunArgs) -> Result<(), UsageError> {
     bar.finish_and_clear();
     let seconds = t0.elapsed().as_secs_f64();
     let s = Summary::of(&results);
-    if a.json {
-        let v = serde_json::json!({
-            "trials": s.trials,
-            "mean_steps": s.steps.mean,
-            "ci95_steps": [s.steps.lo, s.steps.hi],
-            "mean_optimal": s.optimal.mean,
-            "ci95_optimal": [s.optimal.lo, s.optimal.hi],
-            "asoo": s.asoo.mean,
-            "ci95_asoo": [s.asoo.lo, s.asoo.hi],
-            "mean_ratio": s.ratio.mean,
-            "ci95_ratio": [s.ratio.lo, s.ratio.hi],
-            "steps_over_mean_optimal": s.steps_over_mean_optimal,
-            "median_steps": s.median_steps,
-            "q1_steps": s.q1_steps,
-            "q3_steps": s.q3_steps,
-            "zero_optimal": s.zero_optimal,
-            "capped": s.capped,
-            "rollouts": s.counters.rollouts,
-            "rollout_steps": s.counters.rollout_steps,
-            "truncated_rollouts": s.counters.truncated,
-            "seconds": seconds,
-            "threads": threads,
-            "seed": a.seed,
-            "config": cfg,
-        });
-        out!("{v}");
+    if m.get_flag("json") {
+        let report = batch::Report {
+            summary: &s,
+            seconds,
+            threads,
+            seed: cfg.seed,
+            config: &cfg,
+        };
+        out!(
+            "{}",
+            serde_json::to_string(&report).expect("a report serialises")
+        );
     } else {
-        print_table(&cfg, a.seed, &s, seconds, threads);
+        print_table(&cfg, &s, seconds, threads);
     }
     Ok(())
 }
 
-fn print_table(cfg: &Config, seed: u64, s: &Summary, seconds: f64, threads: usize) {
-    let prior = match &cfg.prior {
-        PriorSpec::Delta { .. } => "delta".to_string(),
-        PriorSpec::Gaussian { sigma } => format!("gaussian sigma={sigma}"),
-        PriorSpec::Uniform => "uniform".to_string(),
-        PriorSpec::Weights { .. } => "weights".to_string(),
-    };
-    let who = match cfg.searcher {
-        SearcherKind::Mcts => {
-            let budget = cfg
-                .decision_ms
-                .map_or(format!("L={}", cfg.loops), |ms| format!("{ms} ms/move"));
-            format!(
-                "mcts {} rollout={} belief={} {budget} c={:.4} final={}",
-                cfg.variant.name(),
-                cfg.rollout.name(),
-                cfg.belief.name(),
-                cfg.c,
-                cfg.final_rule.name()
-            )
-        }
-        k => k.name().to_string(),
-    };
+fn print_table(cfg: &Config, s: &Summary, seconds: f64, threads: usize) {
+    let mut who = cfg.searcher.name().to_string();
+    if cfg.searcher.info().deliberates {
+        let budget = cfg
+            .ms
+            .map_or(format!("L={}", cfg.loops), |ms| format!("{ms} ms/move"));
+        who += &format!(
+            " {} rollout={} belief={} {budget} c={:.4} final={}",
+            cfg.variant, cfg.rollout, cfg.belief, cfg.c, cfg.final_rule
+        );
+    }
     let ci =
         |m: &torus_search::stats::MeanCi| format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi);
     out!(
-        "torus-search: N={} r_v={} prior={prior} start={},{} seed={seed}",
+        "torus-search: N={} r_v={} prior={} start={},{} seed={}",
         cfg.n,
         cfg.rv,
+        cfg.prior_label(),
         cfg.start[0],
-        cfg.start[1]
+        cfg.start[1],
+        cfg.seed
     );
     out!("searcher: {who}");
     out!("{:<28}{}", "trials", s.trials);
@@ -455,12 +321,24 @@ fn print_table(cfg: &Config, seed: u64, s: &Summary, seconds: f64, threads: usiz
     out!("{:<28}{:.3} s on {threads} threads", "time", seconds);
 }
 
-fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
-    if !(scale.is_finite() && scale > 0.0 && scale <= 1000.0) {
-        return Err(UsageError(format!(
-            "--scale must be a number in (0, 1000], got {scale}"
-        )));
+fn bench(m: &ArgMatches) -> Result<(), UsageError> {
+    let json = m.get_flag("json");
+    if let (Some(file), Some(window)) =
+        (m.get_one::<String>("episode"), m.get_one::<String>("loops"))
+    {
+        return bench_window(file, window, m.get_one::<String>("seed"), json);
     }
+    let scale = match m.get_one::<String>("scale") {
+        None => 1.0,
+        Some(raw) => raw
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|s| s.is_finite() && *s > 0.0 && *s <= 1000.0)
+            .ok_or_else(|| {
+                UsageError(format!("--scale must be a number in (0, 1000], got {raw}"))
+            })?,
+    };
     use torus_search::bench::{mcts_loops, rollout_steps};
     let mut out = serde_json::Map::new();
     let steps = (2e8 * scale) as u64;
@@ -470,43 +348,43 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
         (PolicyKind::Nsarw, "nsarw_steps_per_s", steps / 8),
     ] {
         // A short warm-up pages in the tables and lets the CPU clock up.
-        rollout_steps(kind, 40, 1.0, 2.0, 7, work / 20).map_err(from_config)?;
+        rollout_steps(kind, 40, 1.0, 2.0, 7, work / 20).map_err(usage)?;
         let t = Instant::now();
-        let done = rollout_steps(kind, 40, 1.0, 2.0, 1, work).map_err(from_config)?;
+        let done = rollout_steps(kind, 40, 1.0, 2.0, 1, work).map_err(usage)?;
         let rate = done as f64 / t.elapsed().as_secs_f64();
         out.insert(key.into(), rate.into());
         if !json {
             out!(
                 "{:<34}{:>14.3e}",
-                format!("{} rollout lattice steps/s", kind.name()),
+                format!("{kind} rollout lattice steps/s"),
                 rate
             );
         }
     }
-    for (variant, vname) in [(Variant::Cells, "cells"), (Variant::Tree, "tree")] {
+    for variant in [Variant::Cells, Variant::Tree] {
         for sigma in [0.0, 5.0] {
             let cfg = Config {
                 variant,
-                prior: PriorSpec::Gaussian { sigma },
+                sigma,
                 ..Config::default()
             };
             let loops = ((if sigma == 0.0 { 200_000.0 } else { 40_000.0 }) * scale) as u64;
             let t = Instant::now();
-            let (done, _, _) = mcts_loops(&cfg, 1, loops.max(100)).map_err(from_config)?;
+            let (done, _, _) = mcts_loops(&cfg, loops.max(100)).map_err(usage)?;
             let lps = done as f64 / t.elapsed().as_secs_f64();
             let trials = ((if sigma == 0.0 { 40.0 } else { 4.0 }) * scale).ceil() as u64;
             let t = Instant::now();
             for i in 0..trials {
-                Episode::trial(&cfg, 1, i).map_err(from_config)?.run();
+                Episode::trial(&cfg, i).map_err(usage)?.run();
             }
             let eps = trials as f64 / t.elapsed().as_secs_f64();
-            let tag = format!("mcts_{vname}_sigma{}", sigma as u32);
+            let tag = format!("mcts_{variant}_sigma{}", sigma as u32);
             out.insert(format!("{tag}_loops_per_s"), lps.into());
             out.insert(format!("{tag}_episodes_per_s"), eps.into());
             if !json {
                 out!(
                     "{:<34}{:>14.1} loops/s {:>10.3} episodes/s",
-                    format!("mcts {vname} N=40 L=100 sigma={sigma} posterior"),
+                    format!("mcts {variant} N=40 L=100 sigma={sigma} posterior"),
                     lps,
                     eps
                 );
@@ -524,9 +402,9 @@ fn bench(json: bool, scale: f64) -> Result<(), UsageError> {
 
 /// Times loops `from..to` of the episode (trials 0, 1, … of the config in `file`).
 fn bench_window(
-    file: &std::path::Path,
+    file: &str,
     window: &str,
-    seed: u64,
+    seed: Option<&String>,
     json: bool,
 ) -> Result<(), UsageError> {
     let bad_window = || {
@@ -542,19 +420,21 @@ fn bench_window(
     if from >= to || to > 1_000_000_000 {
         return Err(bad_window());
     }
-    let text = std::fs::read_to_string(file)
-        .map_err(|e| UsageError(format!("--episode {}: {e}", file.display())))?;
-    let cfg: Config = serde_json::from_str(&text).map_err(|e| {
+    let text =
+        std::fs::read_to_string(file).map_err(|e| UsageError(format!("--episode {file}: {e}")))?;
+    let mut cfg: Config = serde_json::from_str(&text).map_err(|e| {
         UsageError(format!(
-            "--episode {} is not a core config (JSON): {e}",
-            file.display()
+            "--episode {file} is not a torus-search config (JSON): {e}"
         ))
     })?;
+    if let Some(raw) = seed {
+        cfg.set("seed", raw).map_err(usage)?;
+    }
     // LoopRunner::new validates the config.
-    let mut runner = torus_search::bench::LoopRunner::new(&cfg, seed).map_err(from_config)?;
-    runner.run(from).map_err(from_config)?;
+    let mut runner = torus_search::bench::LoopRunner::new(&cfg).map_err(usage)?;
+    runner.run(from).map_err(usage)?;
     let t = Instant::now();
-    runner.run(to - from).map_err(from_config)?;
+    runner.run(to - from).map_err(usage)?;
     let secs = t.elapsed().as_secs_f64();
     let lps = (to - from) as f64 / secs;
     if json {
@@ -570,24 +450,18 @@ fn bench_window(
 
 /// Runs the CLI and returns the process exit code.
 pub fn main() -> i32 {
-    let cli = match Cli::try_parse() {
-        Ok(c) => c,
+    let matches = match command().try_get_matches() {
+        Ok(m) => m,
         Err(e) => {
             let code = e.exit_code();
             let _ = e.print();
             return code;
         }
     };
-    let r = match &cli.cmd {
-        Cmd::Run(a) => run(a),
-        Cmd::Bench {
-            episode: Some(file),
-            loops: Some(window),
-            seed,
-            json,
-            ..
-        } => bench_window(file, window, *seed, *json),
-        Cmd::Bench { json, scale, .. } => bench(*json, *scale),
+    let r = match matches.subcommand() {
+        Some(("run", m)) => run(m),
+        Some(("bench", m)) => bench(m),
+        _ => Err(UsageError("a subcommand is required: run or bench".into())),
     };
     match r {
         Ok(()) => 0,
@@ -595,5 +469,13 @@ pub fn main() -> i32 {
             eprintln!("error: {msg}");
             2
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_command_is_well_formed() {
+        super::command().debug_assert();
     }
 }

@@ -1,13 +1,15 @@
 //! One trial: a target, a searcher, and the moves until detection or the step cap.
 
-use crate::config::{Belief, Config, ConfigError, SearcherKind};
+use crate::belief::BeliefState;
+use crate::budget::Budget;
+use crate::config::{Config, ConfigError};
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::cells::CellTable;
-use crate::mcts::tree::Tree;
-use crate::mcts::{self, DecisionView, LoopEnv, Variant};
-use crate::prior::{Alias, PriorSpec, TargetPrior};
+use crate::mcts::DecisionView;
+use crate::prior::{PriorSpec, TargetPrior};
 use crate::rng::{self, Rng};
-use crate::searchers::Policy;
+use crate::searchers::{Searcher, SearcherInfo, Setup, World};
+use crate::traces::Traces;
+use crate::view::Layer;
 
 /// Where an episode stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -33,7 +35,8 @@ pub struct Counters {
 }
 
 impl Counters {
-    fn add(&mut self, steps: u32, detected: bool) {
+    /// Counts one rollout of `steps` moves; `detected` is false when it was cut short.
+    pub fn add(&mut self, steps: u32, detected: bool) {
         self.rollouts += 1;
         self.rollout_steps += steps as u64;
         self.truncated += (!detected) as u64;
@@ -63,262 +66,152 @@ pub struct TrialResult {
     pub counters: Counters,
 }
 
+/// How many numbers [`TrialResult::fields`] gives.
+pub const TRIAL_FIELDS: usize = 7;
+
 impl TrialResult {
     /// steps / optimal, `None` when optimal is 0.
     pub fn ratio(&self) -> Option<f64> {
         (self.optimal > 0).then(|| self.steps as f64 / self.optimal as f64)
     }
-}
 
-enum Engine {
-    Cells(CellTable),
-    Tree(Tree),
-}
+    /// The result as numbers, for passing between workers:
+    /// `[steps, optimal, found (0/1), target, rollouts, rollout_steps, truncated]`.
+    pub fn fields(&self) -> [f64; TRIAL_FIELDS] {
+        [
+            self.steps as f64,
+            self.optimal as f64,
+            self.found as u8 as f64,
+            self.target as f64,
+            self.counters.rollouts as f64,
+            self.counters.rollout_steps as f64,
+            self.counters.truncated as f64,
+        ]
+    }
 
-enum Agent {
-    Mcts { engine: Engine, policy: Policy },
-    Walker(Policy),
+    /// Reads [`TrialResult::fields`] back; `None` unless every number is a
+    /// non-negative integer in range.
+    pub fn from_fields(f: &[f64]) -> Option<TrialResult> {
+        let int = |v: f64, max: f64| (v >= 0.0 && v <= max && v.fract() == 0.0).then_some(v);
+        let u32max = u32::MAX as f64;
+        let u53 = 9_007_199_254_740_992.0;
+        if f.len() != TRIAL_FIELDS {
+            return None;
+        }
+        Some(TrialResult {
+            steps: int(f[0], u32max)? as u32,
+            optimal: int(f[1], u32max)? as u32,
+            found: int(f[2], 1.0)? == 1.0,
+            target: int(f[3], u32max)? as u32,
+            counters: Counters {
+                rollouts: int(f[4], u53)? as u64,
+                rollout_steps: int(f[5], u53)? as u64,
+                truncated: int(f[6], u53)? as u64,
+            },
+        })
+    }
 }
-
-/// Recent rollout traces kept for drawing.
-#[derive(Clone, Debug, Default)]
-struct Traces {
-    ring: Vec<Vec<u32>>,
-    targets: Vec<u32>,
-    next: usize,
-    filled: usize,
-}
-
-/// The default clock: monotonic milliseconds natively. In wasm the facade
-/// sets one that reads `performance.now()`.
-#[cfg(not(target_arch = "wasm32"))]
-fn default_clock() -> f64 {
-    use std::sync::OnceLock;
-    use std::time::Instant;
-    static T0: OnceLock<Instant> = OnceLock::new();
-    T0.get_or_init(Instant::now).elapsed().as_secs_f64() * 1e3
-}
-
-/// Without a host clock a decision-time budget can never expire, so the
-/// episode also stops a decision after [`NO_CLOCK_LOOPS`] loops.
-#[cfg(target_arch = "wasm32")]
-fn default_clock() -> f64 {
-    0.0
-}
-
-/// The loop count at which a decision-time budget ends even if the clock
-/// never advances.
-pub const NO_CLOCK_LOOPS: u32 = 10_000_000;
 
 /// One trial, advanced move by move or loop by loop.
 pub struct Episode {
     cfg: Config,
-    seed: u64,
+    info: &'static SearcherInfo,
     torus: Torus,
     sensor: Sensor,
-    prior: TargetPrior,
-    /// The planning prior when it differs from `prior` (`known`); sharing
-    /// otherwise keeps an N = 1024 episode from holding two copies.
-    known_plan: Option<TargetPrior>,
+    belief: BeliefState,
+    searcher: Box<dyn Searcher>,
+    rng: Rng,
+    budget: Budget,
+    traces: Traces,
+    counters: Counters,
     target: u32,
-    start: u32,
-    pos: u32,
     optimal: u32,
     path: Vec<u32>,
     status: Status,
-    rng: Rng,
-    agent: Agent,
-    counters: Counters,
-    decision: Counters,
-    loops_done: u32,
-    decision_t0: Option<f64>,
-    clock: fn() -> f64,
-    searched: Vec<u8>,
-    remaining: f64,
-    posterior: Vec<f64>,
-    posterior_alias: Option<Alias>,
-    visit_buf: Vec<u32>,
-    traces: Traces,
-    last_move: Option<Move>,
 }
 
 impl Episode {
-    /// Trial 0 of `cfg` with `seed`.
+    /// Trial 0 of `cfg` (the trial the page shows).
     ///
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field.
-    pub fn new(cfg: &Config, seed: u64) -> Result<Episode, ConfigError> {
-        Episode::trial(cfg, seed, 0)
+    pub fn new(cfg: &Config) -> Result<Episode, ConfigError> {
+        Episode::trial(cfg, 0)
     }
 
-    /// Trial `index` of a batch: its streams derive from `(seed, index)` only.
+    /// Trial `index` of a batch: its streams derive from `(cfg.seed, index)`
+    /// only (the world's from stream 2·index, the searcher's from 2·index + 1),
+    /// so any split of a batch gives the same trials.
     ///
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field.
-    pub fn trial(cfg: &Config, seed: u64, index: u64) -> Result<Episode, ConfigError> {
+    pub fn trial(cfg: &Config, index: u64) -> Result<Episode, ConfigError> {
         cfg.validate()?;
-        let torus = Torus::new(cfg.n).map_err(|e| ConfigError::new("n", cfg.n, e.to_string()))?;
-        let sensor = Sensor::new(&torus, cfg.rv)
-            .map_err(|e| ConfigError::new("rv", cfg.rv, e.to_string()))?;
+        // Past validation the lattice, the sensor and the priors build:
+        // n, r_v, the cells and the paint were checked against their ranges.
+        let spec = cfg.prior_spec()?;
+        let torus = Torus::new(cfg.n).expect("n was validated");
+        let sensor = Sensor::new(&torus, cfg.rv).expect("rv was validated");
+        let prior = TargetPrior::new(&torus, &spec).expect("the prior was validated");
         let start = torus.cell(cfg.start[0] as i64 - 1, cfg.start[1] as i64 - 1);
-        let spec = match cfg.target {
-            Some([x, y]) => PriorSpec::Delta {
-                cell: Some(torus.cell(x as i64 - 1, y as i64 - 1)),
-            },
-            None => cfg.prior.clone(),
-        };
-        let prior = TargetPrior::new(&torus, &spec)
-            .map_err(|e| ConfigError::new("prior", "", e.to_string()))?;
-        let mut world = rng::stream(seed, 2 * index);
+        let mut world = rng::stream(cfg.seed, 2 * index);
         let target = prior.sample(&mut world);
-        let known_plan = cfg.known.then(|| {
+        let plan = cfg.known.then(|| {
             TargetPrior::new(&torus, &PriorSpec::Delta { cell: Some(target) })
-                .expect("target is on the lattice")
+                .expect("the target is on the lattice")
         });
-        let cells = torus.cells();
-        let policy_kind = match cfg.searcher {
-            SearcherKind::Mcts => cfg.rollout,
-            SearcherKind::Rw => crate::searchers::PolicyKind::Rw,
-            SearcherKind::Levy => crate::searchers::PolicyKind::Levy,
-            SearcherKind::Nsarw => crate::searchers::PolicyKind::Nsarw,
-        };
-        let mut policy = Policy::new(policy_kind, &torus, cfg.mu, cfg.epsilon);
-        let agent = match cfg.searcher {
-            SearcherKind::Mcts => Agent::Mcts {
-                engine: match cfg.variant {
-                    Variant::Cells => Engine::Cells(CellTable::new(cells)),
-                    Variant::Tree => Engine::Tree(Tree::new(cfg.tree_nodes)),
-                },
-                policy,
-            },
-            _ => {
-                policy.begin(start, target);
-                Agent::Walker(policy)
-            }
-        };
-        let optimal = sensor.optimal_steps(&torus, start, target);
-        let keep = cfg.keep_traces as usize;
+        let info = cfg.searcher.info();
+        let searcher = (info.build)(&Setup {
+            cfg,
+            torus: &torus,
+            start,
+        });
         let mut ep = Episode {
             cfg: cfg.clone(),
-            seed,
-            sensor,
-            prior,
-            known_plan,
+            info,
+            belief: BeliefState::new(cfg.belief, prior, plan),
+            searcher,
+            rng: rng::stream(cfg.seed, 2 * index + 1),
+            budget: Budget::new(cfg.loops, cfg.ms),
+            traces: Traces::new(cfg.keep_traces as usize),
+            counters: Counters::default(),
             target,
-            start,
-            pos: start,
-            optimal,
+            optimal: sensor.optimal_steps(&torus, start, target),
             path: vec![start],
             status: Status::Running,
-            rng: rng::stream(seed, 2 * index + 1),
-            agent,
-            counters: Counters::default(),
-            decision: Counters::default(),
-            loops_done: 0,
-            decision_t0: None,
-            clock: default_clock,
-            searched: vec![0; cells],
-            remaining: 1.0,
-            posterior: Vec::new(),
-            posterior_alias: None,
-            visit_buf: Vec::new(),
-            traces: Traces {
-                ring: vec![Vec::new(); keep],
-                targets: vec![0; keep],
-                next: 0,
-                filled: 0,
-            },
-            last_move: None,
+            sensor,
             torus,
         };
-        ep.mark_searched(start);
+        ep.belief.search_around(&ep.sensor, start);
         if ep.sensor.detects(&ep.torus, start, target) {
             ep.status = Status::Found;
         }
         Ok(ep)
     }
 
-    /// Sets the millisecond clock used by decision-time budgets.
+    /// Sets the millisecond clock that time budgets read.
     pub fn set_clock(&mut self, clock: fn() -> f64) {
-        self.clock = clock;
+        self.budget.set_clock(clock);
     }
 
-    fn mark_searched(&mut self, cell: u32) {
-        let mass = self.known_plan.as_ref().unwrap_or(&self.prior).mass();
-        for c in self.sensor.around(cell) {
-            let c = c as usize;
-            if self.searched[c] == 0 {
-                self.searched[c] = 1;
-                self.remaining -= mass[c];
-                self.posterior_alias = None;
-            }
-        }
-    }
-
-    /// A practice target from the belief.
-    fn practice_target(&mut self) -> u32 {
-        if self.cfg.belief == Belief::Prior {
-            return self
-                .known_plan
-                .as_ref()
-                .unwrap_or(&self.prior)
-                .sample(&mut self.rng);
-        }
-        // Rejection from the prior is exact for the posterior and cheap while
-        // much mass remains; past a few misses fall back to an alias table.
-        for _ in 0..8 {
-            let c = self
-                .known_plan
-                .as_ref()
-                .unwrap_or(&self.prior)
-                .sample(&mut self.rng);
-            if self.searched[c as usize] == 0 {
-                return c;
-            }
-        }
-        if self.posterior_alias.is_none() {
-            self.refresh_posterior();
-            self.posterior_alias = Some(Alias::new(&self.posterior));
-        }
-        self.posterior_alias
-            .as_ref()
-            .expect("built above")
-            .sample(&mut self.rng)
-    }
-
-    fn refresh_posterior(&mut self) {
-        let mass = self.known_plan.as_ref().unwrap_or(&self.prior).mass();
-        self.posterior.clear();
-        self.posterior.extend(
-            mass.iter()
-                .zip(&self.searched)
-                .map(|(&m, &s)| if s == 0 { m } else { 0.0 }),
-        );
-        let total: f64 = self.posterior.iter().sum();
-        if total > 0.0 {
-            self.posterior.iter_mut().for_each(|p| *p /= total);
-        } else {
-            // The prior's support is exhausted (the planner was wrong about
-            // the target): fall back to uniform over unsearched cells.
-            let free = self.searched.iter().filter(|&&s| s == 0).count().max(1) as f64;
-            for (p, &s) in self.posterior.iter_mut().zip(&self.searched) {
-                *p = if s == 0 { 1.0 / free } else { 0.0 };
-            }
-        }
-    }
-
-    /// Runs up to `max_loops` loops of the current decision (a walker makes
-    /// its move at once). Returns true when a real move was made.
+    /// Runs up to `max_loops` loops of the current decision (a searcher that
+    /// does not deliberate makes its move at once). Returns true when a real
+    /// move was made.
     pub fn step_loops(&mut self, max_loops: u32) -> bool {
         if self.status != Status::Running || max_loops == 0 {
             return false;
         }
-        let pos = self.pos;
-        let mv = match &mut self.agent {
-            Agent::Walker(p) => Some(p.next_move(&self.torus, &mut self.rng, pos)),
-            Agent::Mcts { .. } => self.run_loops(max_loops),
+        let mut w = World {
+            torus: &self.torus,
+            sensor: &mut self.sensor,
+            belief: &mut self.belief,
+            rng: &mut self.rng,
+            pos: *self.path.last().expect("the path holds the start"),
+            budget: &mut self.budget,
+            traces: &mut self.traces,
+            counters: &mut self.counters,
         };
-        match mv {
+        match self.searcher.think(&mut w, max_loops) {
             Some(m) => {
                 self.apply(m);
                 true
@@ -333,99 +226,47 @@ impl Episode {
         self.status
     }
 
+    /// `k` loops of work, carried across decisions (`k` moves for a searcher
+    /// that does not deliberate), stopping early if the episode ends.
+    /// Returns the real moves made.
+    pub fn advance(&mut self, k: u64) -> u64 {
+        let mut moves = 0;
+        if !self.info.deliberates {
+            for _ in 0..k {
+                if !self.step_loops(1) {
+                    break;
+                }
+                moves += 1;
+            }
+            return moves;
+        }
+        let mut left = k;
+        while left > 0 && self.status == Status::Running {
+            let before = self.counters.rollouts;
+            let moved = self.step_loops(left.min(u32::MAX as u64) as u32);
+            let did = self.counters.rollouts - before;
+            left -= did.min(left);
+            if moved {
+                moves += 1;
+            } else if did == 0 {
+                break;
+            }
+        }
+        moves
+    }
+
     /// Runs to detection or the step cap.
     pub fn run(&mut self) -> TrialResult {
         while self.step_move() == Status::Running {}
         self.result()
     }
 
-    fn budget_done(&self) -> bool {
-        match self.cfg.decision_ms {
-            None => self.loops_done >= self.cfg.loops,
-            Some(ms) => {
-                self.loops_done >= NO_CLOCK_LOOPS
-                    || (self.loops_done > 0
-                        && (self.clock)() - self.decision_t0.unwrap_or(0.0) >= ms)
-            }
-        }
-    }
-
-    fn run_loops(&mut self, max_loops: u32) -> Option<Move> {
-        if self.decision_t0.is_none() {
-            self.decision_t0 = Some((self.clock)());
-            self.loops_done = 0;
-            self.decision = Counters::default();
-            let reset = self.cfg.reset_each_move;
-            let pos = self.pos;
-            if let Agent::Mcts { engine, .. } = &mut self.agent {
-                match engine {
-                    Engine::Cells(t) => t.begin_decision(reset),
-                    Engine::Tree(t) => t.begin_decision(pos),
-                }
-            }
-        }
-        let mut done = 0;
-        while done < max_loops && !self.budget_done() {
-            let practice = self.practice_target();
-            self.sensor.arm(practice);
-            let keep = self.traces.ring.len();
-            let slot = self.traces.next;
-            let Agent::Mcts { engine, policy } = &mut self.agent else {
-                unreachable!("walkers do not loop")
-            };
-            let mut env = LoopEnv {
-                torus: &self.torus,
-                mask: self.sensor.mask(),
-                practice,
-                policy,
-                rng: &mut self.rng,
-                rollout_cap: self.cfg.rollout_cap,
-                c: self.cfg.c,
-                trace: if keep > 0 {
-                    Some(&mut self.traces.ring[slot])
-                } else {
-                    None
-                },
-            };
-            let report = match engine {
-                Engine::Cells(t) => t.iterate(&mut env, self.pos),
-                Engine::Tree(t) => t.iterate(&mut env),
-            };
-            if keep > 0 {
-                self.traces.targets[slot] = practice;
-                self.traces.next = (slot + 1) % keep;
-                self.traces.filled = (self.traces.filled + 1).min(keep);
-            }
-            self.counters.add(report.rollout_steps, report.detected);
-            self.decision.add(report.rollout_steps, report.detected);
-            self.loops_done += 1;
-            done += 1;
-        }
-        if !self.budget_done() {
-            return None;
-        }
-        let view = self.decision_view();
-        let m = mcts::final_move(&view, self.cfg.final_rule, &mut self.rng);
-        if let Agent::Mcts {
-            engine: Engine::Tree(t),
-            ..
-        } = &mut self.agent
-        {
-            t.advance(m);
-        }
-        self.decision_t0 = None;
-        Some(m)
-    }
-
     fn apply(&mut self, m: Move) {
-        self.pos = self.torus.step(self.pos, m);
-        self.path.push(self.pos);
-        self.last_move = Some(m);
-        self.mark_searched(self.pos);
-        if let Agent::Walker(Policy::Nsarw(w)) = &mut self.agent {
-            w.enter(self.pos);
-        }
-        if self.sensor.detects(&self.torus, self.pos, self.target) {
+        let pos = self.torus.step(self.position(), m);
+        self.path.push(pos);
+        self.belief.search_around(&self.sensor, pos);
+        self.searcher.observe(&self.torus, m, pos);
+        if self.sensor.detects(&self.torus, pos, self.target) {
             self.status = Status::Found;
         } else if self.steps() >= self.cfg.step_cap {
             self.status = Status::Capped;
@@ -437,9 +278,9 @@ impl Episode {
         &self.cfg
     }
 
-    /// The seed.
-    pub fn seed(&self) -> u64 {
-        self.seed
+    /// The searcher's registry entry.
+    pub fn searcher_info(&self) -> &'static SearcherInfo {
+        self.info
     }
 
     /// The lattice.
@@ -469,17 +310,12 @@ impl Episode {
 
     /// The start cell.
     pub fn start(&self) -> u32 {
-        self.start
+        self.path[0]
     }
 
     /// The searcher's cell.
     pub fn position(&self) -> u32 {
-        self.pos
-    }
-
-    /// The last real move.
-    pub fn last_move(&self) -> Option<Move> {
-        self.last_move
+        *self.path.last().expect("the path holds the start")
     }
 
     /// Every cell occupied, start first.
@@ -487,81 +323,34 @@ impl Episode {
         &self.path
     }
 
-    /// The true target's prior mass per cell.
-    pub fn prior_mass(&self) -> &[f64] {
-        self.prior.mass()
+    /// What is known about the target.
+    pub fn belief(&self) -> &BeliefState {
+        &self.belief
     }
 
-    /// The planning prior (differs from the prior with `known`).
-    pub fn plan_mass(&self) -> &[f64] {
-        self.known_plan.as_ref().unwrap_or(&self.prior).mass()
+    /// The searcher's counts for heat layer `layer` (MCTS visits, NSARW's
+    /// own counts), if it has them; `scratch` is room to assemble them.
+    pub fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+        self.searcher.counts(layer, scratch)
     }
 
-    /// The posterior: the planning prior with searched cells zeroed, renormalised.
-    pub fn posterior_mass(&mut self) -> &[f64] {
-        self.refresh_posterior();
-        &self.posterior
+    /// The decision under way, for a searcher that deliberates.
+    pub fn decision(&self) -> Option<DecisionView> {
+        self.searcher.decision(&self.torus, self.position())
     }
 
-    /// Prior mass not yet searched.
-    pub fn remaining_mass(&self) -> f64 {
-        self.remaining.max(0.0)
-    }
-
-    /// 1 for each cell within r_v of any position occupied so far.
-    pub fn searched(&self) -> &[u8] {
-        &self.searched
-    }
-
-    /// MCTS visit counts per cell: the table for `cells`, the tree projected
-    /// onto cells for `tree`, the walk's own counts for NSARW, else empty.
-    pub fn visit_counts(&mut self) -> &[u32] {
-        match &self.agent {
-            Agent::Mcts {
-                engine: Engine::Cells(t),
-                ..
-            } => t.visits(),
-            Agent::Mcts {
-                engine: Engine::Tree(t),
-                ..
-            } => {
-                self.visit_buf.resize(self.torus.cells(), 0);
-                t.project(&mut self.visit_buf);
-                &self.visit_buf
-            }
-            Agent::Walker(p) => p.counts().unwrap_or(&[]),
-        }
-    }
-
-    /// The NSARW searcher's own visit counts (empty for other searchers).
-    pub fn walker_counts(&self) -> &[u32] {
-        match &self.agent {
-            Agent::Walker(p) => p.counts().unwrap_or(&[]),
-            Agent::Mcts { .. } => &[],
-        }
-    }
-
-    /// The decision under way (all zero for walkers).
-    pub fn decision_view(&self) -> DecisionView {
-        match &self.agent {
-            Agent::Mcts {
-                engine: Engine::Cells(t),
-                ..
-            } => t.view(&self.torus, self.pos, self.cfg.c),
-            Agent::Mcts {
-                engine: Engine::Tree(t),
-                ..
-            } => t.view(&self.torus, self.pos, self.cfg.c),
-            Agent::Walker(_) => DecisionView {
-                c: self.cfg.c,
-                ..DecisionView::default()
-            },
-        }
-    }
-
-    /// Loops done in the decision under way.
+    /// Loops done in the decision under way (or the last one).
     pub fn loops_done(&self) -> u32 {
-        self.loops_done
+        self.budget.loops_done()
+    }
+
+    /// Work done so far: loops for a searcher that deliberates, else moves.
+    pub fn work(&self) -> u64 {
+        if self.info.deliberates {
+            self.counters.rollouts
+        } else {
+            self.steps() as u64
+        }
     }
 
     /// Rollout counters for the whole episode.
@@ -571,27 +360,23 @@ impl Episode {
 
     /// Rollout counters for the decision under way (or the last one).
     pub fn decision_counters(&self) -> Counters {
-        self.decision
-    }
-
-    /// Nodes in the `tree` arena (0 for other searchers).
-    pub fn tree_nodes(&self) -> usize {
-        match &self.agent {
-            Agent::Mcts {
-                engine: Engine::Tree(t),
-                ..
-            } => t.len(),
-            _ => 0,
-        }
+        self.budget.counters()
     }
 
     /// Kept rollout traces, newest first, each with its practice target.
     pub fn traces(&self) -> impl Iterator<Item = (&[u32], u32)> + '_ {
-        let k = self.traces.ring.len();
-        (0..self.traces.filled).map(move |i| {
-            let slot = (self.traces.next + k - 1 - i) % k;
-            (self.traces.ring[slot].as_slice(), self.traces.targets[slot])
-        })
+        self.traces.iter()
+    }
+
+    /// Changes whenever heat layer `layer` may have changed: never for the
+    /// priors, with each newly searched cell for the posterior and the
+    /// searched area, with each loop or move for the searcher's counts.
+    pub fn generation(&self, layer: Layer) -> u64 {
+        match layer {
+            Layer::Prior | Layer::Plan => 0,
+            Layer::Posterior | Layer::Searched => self.belief.generation(),
+            Layer::Visits | Layer::Walker => self.counters.rollouts + self.steps() as u64,
+        }
     }
 
     /// The result so far.

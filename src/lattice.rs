@@ -218,7 +218,6 @@ impl Torus {
 /// that marks the cells within the radius of one armed target.
 #[derive(Clone, Debug)]
 pub struct Sensor {
-    rv: f64,
     r2: u64,
     offsets: Vec<(i32, i32)>,
     mask: Vec<u8>,
@@ -258,18 +257,12 @@ impl Sensor {
         // touch the likeliest cells first; order does not affect results.
         offsets.sort_by_key(|&(dx, dy)| (dx * dx + dy * dy, dy, dx));
         Ok(Sensor {
-            rv,
             r2,
             offsets,
             mask: vec![0; torus.cells()],
             armed: None,
             n,
         })
-    }
-
-    /// The radius.
-    pub fn rv(&self) -> f64 {
-        self.rv
     }
 
     /// Displacements `(dx, dy)` within the radius (each cell once).
@@ -307,11 +300,6 @@ impl Sensor {
                 self.mask[c as usize] = 0;
             }
         }
-    }
-
-    /// The armed target, if any.
-    pub fn armed(&self) -> Option<u32> {
-        self.armed
     }
 
     /// The detection mask of the armed target (1 = detects).

@@ -1,12 +1,27 @@
 //! Target priors: each samples a target and reports its exact mass over all N² cells.
 
 use crate::lattice::Torus;
+use crate::named::named_enum;
 use crate::rng::{self, Rng};
 use std::fmt;
 
+named_enum! {
+    /// The prior a configuration names (its `prior` parameter).
+    pub enum PriorKind {
+        /// The paper's rounded, wrapped Gaussian (`sigma`; 0 is a delta at
+        /// the centre, inf is uniform).
+        Gaussian = "gaussian",
+        /// All mass on the paper's centre cell.
+        Delta = "delta",
+        /// Every cell equally likely.
+        Uniform = "uniform",
+        /// A painted grid of weights 0–15 (`paint`).
+        Paint = "paint",
+    }
+}
+
 /// Which prior, before it is built on a lattice.
-#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
+#[derive(Clone, Debug, PartialEq)]
 pub enum PriorSpec {
     /// All mass on one cell; `None` means the paper's centre `(N/2+1, N/2+1)`.
     Delta { cell: Option<u32> },
@@ -72,7 +87,6 @@ enum Sampler {
 /// A prior built on a lattice.
 #[derive(Clone, Debug)]
 pub struct TargetPrior {
-    spec: PriorSpec,
     n: u32,
     mass: Vec<f64>,
     sampler: Sampler,
@@ -146,17 +160,7 @@ impl TargetPrior {
                 (m, Sampler::Alias(a))
             }
         };
-        Ok(TargetPrior {
-            spec: spec.clone(),
-            n,
-            mass,
-            sampler,
-        })
-    }
-
-    /// The spec this prior was built from.
-    pub fn spec(&self) -> &PriorSpec {
-        &self.spec
+        Ok(TargetPrior { n, mass, sampler })
     }
 
     /// Probability of each cell, `y * n + x`; sums to 1.
@@ -229,6 +233,115 @@ fn wrapped_rounded_normal(n: u32, mu: f64, sigma: f64) -> Vec<f64> {
         *v /= total;
     }
     p
+}
+
+/// The largest weight level of a painted prior.
+pub const PAINT_MAX_LEVEL: u8 = 15;
+
+const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+
+/// Encodes painted levels (0–15 per cell) as URL-safe text: runs of equal
+/// levels, each as three base64url digits holding 4 bits of level and 12
+/// bits of (run length − 1), so a run covers at most 4096 cells.
+///
+/// Levels above 15 are clamped to 15.
+pub fn encode_paint(levels: &[u8]) -> String {
+    let mut out = String::with_capacity(3 * (levels.len() / 64 + 1));
+    let mut i = 0;
+    while i < levels.len() {
+        let lv = levels[i].min(PAINT_MAX_LEVEL);
+        let mut run = 1;
+        while i + run < levels.len() && levels[i + run].min(PAINT_MAX_LEVEL) == lv && run < 4096 {
+            run += 1;
+        }
+        let word = (lv as usize) << 12 | (run - 1);
+        for shift in [12, 6, 0] {
+            out.push(B64[(word >> shift) & 63] as char);
+        }
+        i += run;
+    }
+    out
+}
+
+/// A painted prior that cannot be decoded.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PaintError {
+    /// A character outside base64url, or a length that is not a multiple of 3.
+    Syntax,
+    /// The runs do not cover exactly `n * n` cells.
+    Size { got: usize, want: usize },
+    /// Every level is 0: no cell could hold the target.
+    Empty,
+}
+
+impl fmt::Display for PaintError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PaintError::Syntax => write!(
+                f,
+                "paint is not run-length encoded levels (base64url, 3 characters a run)"
+            ),
+            PaintError::Size { got, want } => {
+                write!(f, "paint covers {got} cells, not n*n = {want}")
+            }
+            PaintError::Empty => write!(f, "paint has no cell above level 0"),
+        }
+    }
+}
+
+impl std::error::Error for PaintError {}
+
+/// Decodes [`encode_paint`] text into `n * n` levels.
+///
+/// # Errors
+/// A [`PaintError`] when the text is malformed, covers another number of
+/// cells, or paints nothing.
+pub fn decode_paint(text: &str, n: u32) -> Result<Vec<u8>, PaintError> {
+    let want = n as usize * n as usize;
+    let bytes = text.as_bytes();
+    if bytes.len() % 3 != 0 {
+        return Err(PaintError::Syntax);
+    }
+    let digit = |b: u8| B64.iter().position(|&d| d == b).ok_or(PaintError::Syntax);
+    let mut levels = Vec::with_capacity(want);
+    for run in bytes.chunks_exact(3) {
+        let word = digit(run[0])? << 12 | digit(run[1])? << 6 | digit(run[2])?;
+        let lv = (word >> 12) as u8;
+        let len = (word & 4095) + 1;
+        if lv > PAINT_MAX_LEVEL {
+            return Err(PaintError::Syntax);
+        }
+        if levels.len() + len > want {
+            return Err(PaintError::Size {
+                got: levels.len() + len,
+                want,
+            });
+        }
+        levels.resize(levels.len() + len, lv);
+    }
+    if levels.len() != want {
+        return Err(PaintError::Size {
+            got: levels.len(),
+            want,
+        });
+    }
+    if levels.iter().all(|&l| l == 0) {
+        return Err(PaintError::Empty);
+    }
+    Ok(levels)
+}
+
+/// Rescales painted levels from an `from`×`from` grid to `to`×`to`
+/// (nearest cell), for when the lattice side changes under a painting.
+pub fn resize_paint(levels: &[u8], from: u32, to: u32) -> Vec<u8> {
+    let (from, to) = (from as usize, to as usize);
+    let mut out = Vec::with_capacity(to * to);
+    for y in 0..to {
+        for x in 0..to {
+            out.push(levels[(y * from / to) * from + x * from / to]);
+        }
+    }
+    out
 }
 
 /// Walker/Vose alias table: O(1) sampling from a fixed discrete distribution.
@@ -306,6 +419,44 @@ mod tests {
                 assert!(p.mass().iter().all(|m| (m - u).abs() < 1e-12), "sigma {s}");
             }
         }
+    }
+
+    #[test]
+    fn paint_round_trips_and_rejects_bad_text() {
+        let n = 37;
+        let levels: Vec<u8> = (0..n * n)
+            .map(|i| {
+                if (i * 7919) % 97 < 20 {
+                    (i % 15) as u8 + 1
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let s = encode_paint(&levels);
+        assert!(s
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'_'));
+        assert_eq!(decode_paint(&s, n).unwrap(), levels);
+        assert!(matches!(
+            decode_paint(&s, n + 1),
+            Err(PaintError::Size { .. })
+        ));
+        assert_eq!(decode_paint(&format!("{s}A"), n), Err(PaintError::Syntax));
+        assert_eq!(decode_paint("A*A", 3), Err(PaintError::Syntax));
+        assert_eq!(
+            decode_paint(&encode_paint(&[0; 9]), 3),
+            Err(PaintError::Empty)
+        );
+        // Runs longer than 4096 cells split.
+        let mut big = vec![0u8; 1024 * 1024];
+        big[5] = 3;
+        assert_eq!(decode_paint(&encode_paint(&big), 1024).unwrap(), big);
+        // Halving a grid keeps its corners.
+        let mut g = vec![0u8; 16];
+        g[0] = 9;
+        assert_eq!(resize_paint(&g, 4, 2), vec![9, 0, 0, 0]);
+        assert_eq!(resize_paint(&[1, 2, 3, 4], 2, 4)[15], 4);
     }
 
     #[test]

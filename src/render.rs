@@ -1,7 +1,7 @@
 //! Heatmap rendering: values on the N×N lattice to one RGBA buffer.
 //!
-//! Pure Rust (no browser types), so it is tested natively and the web facade
-//! only hands the buffer to `ImageData` zero-copy.
+//! Pure Rust (no browser types), so it is tested natively; the frame
+//! builder ([`crate::view`]) fills the buffers the page puts on a canvas.
 //!
 //! The palettes are built here from first principles rather than copied from a
 //! table: each is a path through the OKLab colour space whose lightness rises
@@ -14,29 +14,21 @@
 //! * [`Palette::Ember`] — near-black → purple → orange → pale yellow, after inferno.
 //! * [`Palette::Cividis`] — navy → grey → yellow, no red–green component at all.
 
-/// A named colour ramp, sampled into a 256-entry lookup table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Palette {
-    Viridis,
-    Ember,
-    Cividis,
+use crate::named::named_enum;
+
+named_enum! {
+    /// A named colour ramp, sampled into a 256-entry lookup table.
+    pub enum Palette {
+        /// Purple-blue → teal → yellow.
+        Viridis = "viridis",
+        /// Near-black → purple → orange → pale yellow.
+        Ember = "ember",
+        /// Navy → grey → yellow.
+        Cividis = "cividis",
+    }
 }
 
 impl Palette {
-    pub const ALL: [Palette; 3] = [Palette::Viridis, Palette::Ember, Palette::Cividis];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Palette::Viridis => "viridis",
-            Palette::Ember => "ember",
-            Palette::Cividis => "cividis",
-        }
-    }
-
-    pub fn parse(s: &str) -> Option<Palette> {
-        Palette::ALL.into_iter().find(|p| p.name() == s)
-    }
-
     /// (lightness start, lightness end, hue start°, hue end°, chroma at 0, ½, 1).
     fn path(self) -> ([f64; 2], [f64; 2], [f64; 3]) {
         match self {
@@ -79,28 +71,75 @@ pub enum Scale {
     Log { floor: f64 },
 }
 
+named_enum! {
+    /// How values map onto a palette, by name (see [`Scale`]).
+    pub enum ScaleKind {
+        /// Zero to the maximum.
+        Linear = "linear",
+        /// The smallest nonzero value to the maximum.
+        Stretch = "stretch",
+        /// Logarithmic.
+        Log = "log",
+    }
+}
+
+impl Scale {
+    /// The scale `kind` for values whose maximum is `max`. A log scale's
+    /// floor is 1 for counts, and four decades below the maximum for masses.
+    pub fn of(kind: ScaleKind, max: f64, counts: bool) -> Scale {
+        match kind {
+            ScaleKind::Linear => Scale::Linear,
+            ScaleKind::Stretch => Scale::Stretch,
+            ScaleKind::Log => Scale::Log {
+                floor: if counts { 1.0 } else { max * 1e-4 },
+            },
+        }
+    }
+}
+
 /// How transparent low values are.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Alpha {
     /// Every cell opaque; zero gets the palette's first colour.
     Opaque,
     /// Zero is fully transparent, other cells fade in: alpha = `lo + (hi - lo)·t`.
-    Ramp { lo: u8, hi: u8 },
+    Ramp {
+        /// Alpha of the lowest level.
+        lo: u8,
+        /// Alpha of the highest level.
+        hi: u8,
+    },
 }
 
-/// What [`colorize`] found, for the legend.
+impl Alpha {
+    /// `[255, 255]` is opaque; anything else ramps from `lo` to `hi`.
+    pub fn of([lo, hi]: [u8; 2]) -> Alpha {
+        if lo == 255 && hi == 255 {
+            Alpha::Opaque
+        } else {
+            Alpha::Ramp { lo, hi }
+        }
+    }
+}
+
+/// The extent of a layer's values, for the legend.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Summary {
+pub struct Extent {
+    /// The smallest value.
     pub min: f64,
     /// The smallest value above zero (0 when there is none).
     pub min_nonzero: f64,
+    /// The largest value.
     pub max: f64,
+    /// The sum.
     pub sum: f64,
+    /// How many values are above zero.
     pub nonzero: usize,
 }
 
-/// Values that can be drawn.
+/// Values that can be drawn: masses (f64), counts (u32) and flags (u8).
 pub trait Value: Copy {
+    /// The value as a float.
     fn to_f64(self) -> f64;
 }
 impl Value for f64 {
@@ -109,19 +148,7 @@ impl Value for f64 {
         self
     }
 }
-impl Value for f32 {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-}
 impl Value for u32 {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-}
-impl Value for u64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
@@ -133,31 +160,31 @@ impl Value for u8 {
         self as f64
     }
 }
-impl Value for bool {
-    #[inline]
-    fn to_f64(self) -> f64 {
-        self as u8 as f64
-    }
-}
 
 /// Minimum, maximum, sum and count of nonzero values (NaN and negatives count as 0).
-pub fn summarize<T: Value>(values: &[T]) -> Summary {
-    let mut s = Summary {
+pub fn summarize<T: Value>(values: &[T]) -> Extent {
+    let mut s = Extent {
         min: f64::INFINITY,
         min_nonzero: f64::INFINITY,
         max: 0.0,
         sum: 0.0,
         nonzero: 0,
     };
+    // Plain comparisons, not f64::min/max: `clean` leaves no NaN, and wasm's
+    // min/max instructions propagate NaN, so f64::min costs extra selects.
     for &v in values {
         let v = clean(v.to_f64());
-        s.min = s.min.min(v);
-        if v > 0.0 {
-            s.min_nonzero = s.min_nonzero.min(v);
-        }
-        s.max = s.max.max(v);
+        let positive = v > 0.0;
+        let nz = if positive { v } else { f64::INFINITY };
+        s.min = if v < s.min { v } else { s.min };
+        s.min_nonzero = if nz < s.min_nonzero {
+            nz
+        } else {
+            s.min_nonzero
+        };
+        s.max = if v > s.max { v } else { s.max };
         s.sum += v;
-        s.nonzero += (v > 0.0) as usize;
+        s.nonzero += positive as usize;
     }
     if values.is_empty() {
         s.min = 0.0;
@@ -186,23 +213,40 @@ const LEVEL_EPS: f64 = 1e-6;
 #[derive(Clone)]
 pub struct Colorizer {
     lut: [[u8; 4]; 256],
-    palette: Palette,
 }
 
 impl Colorizer {
+    /// A renderer for `palette`.
     pub fn new(palette: Palette) -> Self {
-        Colorizer {
-            lut: palette.lut(),
-            palette,
-        }
+        Colorizer { lut: palette.lut() }
     }
 
-    pub fn palette(&self) -> Palette {
-        self.palette
-    }
-
+    /// The palette's 256-entry RGBA table.
     pub fn lut(&self) -> &[[u8; 4]; 256] {
         &self.lut
+    }
+
+    /// Colours `values` on the scale `kind` (its log floor set by whether
+    /// they are `counts`), summarising them once; returns the extent.
+    ///
+    /// # Panics
+    /// If `out` does not hold `4 * values.len()` bytes.
+    pub fn colorize_kind<T: Value>(
+        &self,
+        values: &[T],
+        out: &mut [u8],
+        kind: ScaleKind,
+        counts: bool,
+        alpha: Alpha,
+    ) -> Extent {
+        let summary = summarize(values);
+        self.colorize_summarized(
+            values,
+            out,
+            summary,
+            Scale::of(kind, summary.max, counts),
+            alpha,
+        )
     }
 
     /// Writes one RGBA pixel per value into `out` (which must hold
@@ -216,62 +260,55 @@ impl Colorizer {
         out: &mut [u8],
         scale: Scale,
         alpha: Alpha,
-    ) -> Summary {
+    ) -> Extent {
+        self.colorize_summarized(values, out, summarize(values), scale, alpha)
+    }
+
+    fn colorize_summarized<T: Value>(
+        &self,
+        values: &[T],
+        out: &mut [u8],
+        summary: Extent,
+        scale: Scale,
+        alpha: Alpha,
+    ) -> Extent {
         assert_eq!(out.len(), 4 * values.len(), "RGBA buffer length");
-        let summary = summarize(values);
         let max = summary.max;
         let (lo, hi) = match alpha {
             Alpha::Opaque => (255.0, 255.0),
             Alpha::Ramp { lo, hi } => (lo as f64, hi as f64),
         };
         let transparent_zero = matches!(alpha, Alpha::Ramp { .. });
-        // Precompute the map t -> pixel for all 256 levels.
-        let mut px = [[0u8; 4]; 256];
+        // Precompute the map level -> pixel for all 256 levels, each pixel
+        // as the u32 whose bytes in memory are R, G, B, A.
+        let mut px = [0u32; 256];
         for (i, p) in px.iter_mut().enumerate() {
             let t = i as f64 / 255.0;
             let a = (lo + (hi - lo) * t).round().clamp(0.0, 255.0) as u8;
             let c = self.lut[i];
-            *p = [c[0], c[1], c[2], a];
+            *p = u32::from_ne_bytes([c[0], c[1], c[2], a]);
         }
-        let zero_px = if transparent_zero {
-            [0, 0, 0, 0]
-        } else {
-            px[0]
-        };
+        let zero = if transparent_zero { 0 } else { px[0] };
         if max <= 0.0 {
-            for chunk in out.chunks_exact_mut(4) {
-                chunk.copy_from_slice(&zero_px);
-            }
+            fill(values, out, &px, zero, |_| 0);
             return summary;
         }
         match scale {
             Scale::Linear => {
                 let k = 255.0 / max;
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        // At least level 1, so a tiny nonzero value stays visible.
-                        px[((v * k + LEVEL_EPS) as usize).clamp(1, 255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                // At least level 1, so a tiny nonzero value stays visible.
+                fill(values, out, &px, zero, |v| {
+                    ((v * k + LEVEL_EPS) as usize).clamp(1, 255)
+                });
             }
             Scale::Stretch => {
                 let lo = summary.min_nonzero;
                 let span = max - lo;
                 let k = if span > 0.0 { 255.0 / span } else { 0.0 };
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        // Level 0 is the minimum: transparent in ramp mode.
-                        px[(((v - lo) * k + LEVEL_EPS) as usize).min(255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                // Level 0 is the minimum: transparent in ramp mode.
+                fill(values, out, &px, zero, |v| {
+                    (((v - lo) * k + LEVEL_EPS) as usize).min(255)
+                });
             }
             Scale::Log { floor } => {
                 let floor = if floor > 0.0 && floor.is_finite() {
@@ -281,19 +318,45 @@ impl Colorizer {
                 };
                 let inv_floor = 1.0 / floor;
                 let k = 255.0 / fast_log2(1.0 + max * inv_floor) as f64;
-                for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
-                    let v = clean(v.to_f64());
-                    let p = if v > 0.0 {
-                        let t = fast_log2(1.0 + v * inv_floor) as f64 * k;
-                        px[(t as usize).clamp(1, 255)]
-                    } else {
-                        zero_px
-                    };
-                    chunk.copy_from_slice(&p);
-                }
+                fill(values, out, &px, zero, |v| {
+                    ((fast_log2(1.0 + v * inv_floor) as f64 * k) as usize).clamp(1, 255)
+                });
             }
         }
         summary
+    }
+}
+
+/// Writes `px[level(v)]` for each positive value and `zero` for the rest,
+/// one u32 store a pixel (byte by byte only if `out` is not 4-aligned): the
+/// recolouring of big layers is most of what a frame costs.
+#[inline(always)]
+fn fill<T: Value>(
+    values: &[T],
+    out: &mut [u8],
+    px: &[u32; 256],
+    zero: u32,
+    level: impl Fn(f64) -> usize,
+) {
+    let pixel = |v: T| {
+        let v = clean(v.to_f64());
+        if v > 0.0 {
+            px[level(v).min(255)]
+        } else {
+            zero
+        }
+    };
+    // SAFETY: every 4 bytes are a valid u32, and align_to_mut splits off
+    // any unaligned ends.
+    let (head, words, tail) = unsafe { out.align_to_mut::<u32>() };
+    if head.is_empty() && tail.is_empty() {
+        for (&v, w) in values.iter().zip(words.iter_mut()) {
+            *w = pixel(v);
+        }
+    } else {
+        for (&v, chunk) in values.iter().zip(out.chunks_exact_mut(4)) {
+            chunk.copy_from_slice(&pixel(v).to_ne_bytes());
+        }
     }
 }
 
@@ -392,7 +455,7 @@ mod tests {
 
     #[test]
     fn palettes_have_monotone_linear_lightness() {
-        for p in Palette::ALL {
+        for &p in Palette::ALL {
             let lut = p.lut();
             let ls: Vec<f64> = lut
                 .iter()
@@ -415,7 +478,7 @@ mod tests {
 
     #[test]
     fn palette_names_round_trip() {
-        for p in Palette::ALL {
+        for &p in Palette::ALL {
             assert_eq!(Palette::parse(p.name()), Some(p));
         }
         assert_eq!(Palette::parse("jet"), None);

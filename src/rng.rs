@@ -18,7 +18,8 @@ pub fn splitmix64(mut z: u64) -> u64 {
 
 /// The generator for stream `stream` of run `seed`.
 ///
-/// Trial `i` of a batch uses stream `i`, so results do not depend on how
+/// Trial `i` of a batch uses streams `2i` (the world: its target) and
+/// `2i + 1` (the searcher), so results do not depend on how
 /// trials are spread over threads.
 pub fn stream(seed: u64, stream: u64) -> Rng {
     let s = splitmix64(seed ^ splitmix64(stream.wrapping_mul(0xD1B5_4A32_D192_ED03)));

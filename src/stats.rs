@@ -103,8 +103,13 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
 }
 
-/// Everything reported over a batch of trials.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+/// Everything reported over a batch of trials. It serialises flat, with
+/// the field names the CLI's `--json` and the page's batch panel use:
+/// `trials, mean_steps, ci95_steps, mean_optimal, ci95_optimal, asoo,
+/// ci95_asoo, mean_ratio, ci95_ratio, steps_over_mean_optimal, median_steps,
+/// q1_steps, q3_steps, zero_optimal, capped, rollouts, rollout_steps,
+/// truncated_rollouts` (a CI is `[lo, hi]`).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     /// Trials run.
     pub trials: u64,
@@ -159,6 +164,54 @@ impl Summary {
             capped: results.iter().filter(|r| !r.found).count() as u64,
             counters,
         }
+    }
+}
+
+impl serde::Serialize for Summary {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        #[derive(serde::Serialize)]
+        struct Flat {
+            trials: u64,
+            mean_steps: f64,
+            ci95_steps: [f64; 2],
+            mean_optimal: f64,
+            ci95_optimal: [f64; 2],
+            asoo: f64,
+            ci95_asoo: [f64; 2],
+            mean_ratio: f64,
+            ci95_ratio: [f64; 2],
+            steps_over_mean_optimal: f64,
+            median_steps: f64,
+            q1_steps: f64,
+            q3_steps: f64,
+            zero_optimal: u64,
+            capped: u64,
+            rollouts: u64,
+            rollout_steps: u64,
+            truncated_rollouts: u64,
+        }
+        let ci = |m: &MeanCi| [m.lo, m.hi];
+        Flat {
+            trials: self.trials,
+            mean_steps: self.steps.mean,
+            ci95_steps: ci(&self.steps),
+            mean_optimal: self.optimal.mean,
+            ci95_optimal: ci(&self.optimal),
+            asoo: self.asoo.mean,
+            ci95_asoo: ci(&self.asoo),
+            mean_ratio: self.ratio.mean,
+            ci95_ratio: ci(&self.ratio),
+            steps_over_mean_optimal: self.steps_over_mean_optimal,
+            median_steps: self.median_steps,
+            q1_steps: self.q1_steps,
+            q3_steps: self.q3_steps,
+            zero_optimal: self.zero_optimal,
+            capped: self.capped,
+            rollouts: self.counters.rollouts,
+            rollout_steps: self.counters.rollout_steps,
+            truncated_rollouts: self.counters.truncated,
+        }
+        .serialize(s)
     }
 }
 

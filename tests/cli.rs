@@ -45,30 +45,30 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             &["run", "--start", "41,1"],
             "--start must be x,y with each in 1..=40, got 41,1",
         ),
-        (&["run", "--start", "a,b"], "expected x,y"),
+        (&["run", "--start", "a,b"], "--start must be x,y"),
         (
             &["run", "--target", "0,3"],
             "--target must be x,y with each in 1..=40",
         ),
         (
             &["run", "--searcher", "bogus"],
-            "possible values: mcts, rw, levy, nsarw",
+            "--searcher must be one of mcts, rw, levy, nsarw, got bogus",
         ),
         (
             &["run", "--loops", "5", "--decision-ms", "2"],
-            "cannot be used with",
+            "--loops does not apply to this configuration",
         ),
         (
             &["run", "--prior", "uniform", "--sigma", "3"],
-            "--sigma only applies to --prior gaussian",
+            "--sigma does not apply to this configuration: it applies with prior gaussian",
         ),
         (
             &["run", "--target", "2,2", "--prior", "delta"],
-            "cannot be used with",
+            "--prior does not apply to this configuration: it applies without a fixed target",
         ),
         (
             &["run", "--searcher", "rw", "--loops", "10"],
-            "only apply to --searcher mcts",
+            "--loops does not apply to this configuration: searcher rw does not read it",
         ),
         (
             &["run", "--c", "nan"],
@@ -87,8 +87,8 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--threads must be an integer in 1..=1024",
         ),
         (
-            &["run", "--decision-ms", "0"],
-            "--decision-ms must be a number of milliseconds",
+            &["run", "--decision-ms", "-1"],
+            "--ms must be a number in [0.001, 600000], or 0 for none, got -1",
         ),
         (
             &["run", "--rollout-cap", "0"],
@@ -112,7 +112,7 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
         ),
         (
             &["bench", "--episode", "Cargo.toml", "--loops", "0..9"],
-            "--episode Cargo.toml is not a core config (JSON)",
+            "--episode Cargo.toml is not a torus-search config (JSON)",
         ),
         (&["bench", "--seed", "3"], "--episode <FILE>"),
     ];
@@ -255,11 +255,7 @@ fn bench_times_a_window_of_an_episode() {
     let dir = std::env::temp_dir().join(format!("torus-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("core.json");
-    std::fs::write(
-        &file,
-        r#"{"n": 30, "prior": {"kind": "gaussian", "sigma": 4}, "loops": 50}"#,
-    )
-    .unwrap();
+    std::fs::write(&file, r#"{"n": 30, "sigma": 4, "loops": 50}"#).unwrap();
     let f = file.to_str().unwrap();
     let v = json(&[
         "bench",
@@ -279,7 +275,9 @@ fn bench_times_a_window_of_an_episode() {
     let o = cli(&["bench", "--episode", f, "--loops", "0..10"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("--searcher must be mcts for a loop benchmark"),
+        stderr(&o).contains(
+            "--searcher must be a searcher that deliberates (mcts) for a loop benchmark, got rw"
+        ),
         "{}",
         stderr(&o)
     );

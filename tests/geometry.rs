@@ -8,10 +8,10 @@
 mod common;
 
 use common::{bfs_steps, ref_dist2, ref_l1, ref_neighbours};
-use torus_search::config::{Config, SearcherKind};
+use torus_search::config::Config;
 use torus_search::episode::{Episode, Status};
 use torus_search::lattice::{Move, Sensor, Torus};
-use torus_search::prior::PriorSpec;
+use torus_search::prior::PriorKind;
 
 fn xy(n: i64, c: u32) -> (i64, i64) {
     (c as i64 % n, c as i64 / n)
@@ -153,11 +153,11 @@ fn episodes_report_bfs_optimal_steps_in_user_coordinates() {
                         rv,
                         start: [sx, sy],
                         target: Some([tx, ty]),
-                        searcher: SearcherKind::Rw,
-                        prior: PriorSpec::Uniform,
+                        searcher: common::searcher("rw"),
+                        prior: PriorKind::Uniform,
                         ..Config::default()
                     };
-                    let ep = Episode::trial(&cfg, 1, 0).unwrap();
+                    let ep = Episode::trial(&cfg, 0).unwrap();
                     let pt = (tx as i64 - 1, ty as i64 - 1);
                     let ps = (sx as i64 - 1, sy as i64 - 1);
                     assert_eq!(ep.target(), idx(n, pt));

@@ -5,11 +5,14 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use torus_search::config::{Belief, Config, SearcherKind};
+use torus_search::belief::Belief;
+use torus_search::config::Config;
 use torus_search::episode::Episode;
 use torus_search::mcts::Variant;
-use torus_search::prior::PriorSpec;
+use torus_search::prior::PriorKind;
 use torus_search::searchers::PolicyKind;
+use torus_search::searchers::SearcherId;
+use torus_search::view::Layer;
 
 struct Counting;
 
@@ -44,13 +47,15 @@ fn peak_during(cfg: &Config, moves: u32) -> usize {
     let base = LIVE.load(Ordering::Relaxed);
     PEAK.store(base, Ordering::Relaxed);
     {
-        let mut e = Episode::new(cfg, 1).expect("valid config");
+        let mut e = Episode::new(cfg).expect("valid config");
         for _ in 0..moves {
             e.step_move();
         }
-        // What the page reads every frame.
-        let _ = e.visit_counts().len();
-        let _ = e.posterior_mass().len();
+        // What a frame reads of it: the posterior and the searcher's counts.
+        let mut posterior = Vec::new();
+        e.belief().posterior_into(&mut posterior);
+        let mut scratch = Vec::new();
+        let _ = e.counts(Layer::Visits, &mut scratch).map(<[u32]>::len);
     }
     PEAK.load(Ordering::Relaxed) - base
 }
@@ -68,7 +73,7 @@ fn an_episode_at_n_1024_stays_under_64_mib() {
         (
             "mcts cells uniform posterior",
             Config {
-                prior: PriorSpec::Uniform,
+                prior: PriorKind::Uniform,
                 belief: Belief::Posterior,
                 ..big.clone()
             },
@@ -90,8 +95,8 @@ fn an_episode_at_n_1024_stays_under_64_mib() {
         (
             "nsarw walker uniform",
             Config {
-                searcher: SearcherKind::Nsarw,
-                prior: PriorSpec::Uniform,
+                searcher: SearcherId::parse("nsarw").unwrap(),
+                prior: PriorKind::Uniform,
                 ..big.clone()
             },
         ),

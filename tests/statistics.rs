@@ -11,21 +11,22 @@ mod common;
 
 use common::{chi2_crit_1e4, chi2_merged};
 use torus_search::batch;
-use torus_search::config::{Config, SearcherKind};
+use torus_search::config::Config;
 use torus_search::episode::{Episode, Status};
 use torus_search::lattice::{Move, Sensor, Torus};
-use torus_search::prior::{PriorSpec, TargetPrior};
+use torus_search::prior::{PriorKind, PriorSpec, TargetPrior};
 use torus_search::rng;
 use torus_search::searchers::{flight_length, NoVisit, Policy, PolicyKind};
 use torus_search::stats::MeanCi;
 use torus_search::theory;
+use torus_search::view::Layer;
 
 fn rw_config(n: u32, rv: f64) -> Config {
     Config {
         n,
         rv,
-        searcher: SearcherKind::Rw,
-        prior: PriorSpec::Uniform,
+        searcher: common::searcher("rw"),
+        prior: PriorKind::Uniform,
         step_cap: 100_000_000,
         ..Config::default()
     }
@@ -41,8 +42,11 @@ fn rw_mean_hitting_time_of_a_uniform_target_is_kemenys_constant() {
     // constant Σ_{(a,b)≠0} 1/(1 − (cos 2πa/N + cos 2πb/N)/2), counting 0
     // when the target is the start (17.17 for N = 4, 47.99 for N = 6).
     for (n, trials, seed) in [(4u32, 20_000u64, 11u64), (6, 8_000, 12)] {
-        let cfg = rw_config(n, 0.0);
-        let res = batch::run_trials(&cfg, seed, 0, trials).unwrap();
+        let cfg = Config {
+            seed,
+            ..rw_config(n, 0.0)
+        };
+        let res = batch::run_trials(&cfg, 0, trials).unwrap();
         assert!(res.iter().all(|r| r.found), "no RW episode may be capped");
         let m = MeanCi::of(res.iter().map(|r| r.steps as f64));
         let k = theory::kemeny(n);
@@ -110,11 +114,12 @@ fn rw_mean_hitting_time_of_a_fixed_target_solves_the_linear_system() {
             let cfg = Config {
                 start,
                 target: Some(target),
+                seed,
                 ..rw_config(n, 1.0)
             };
             // Enough trials that 4 SE < 1 step (SE ≈ h / √trials).
             let trials = if n == 7 { 16_000 } else { 6_000 };
-            let res = batch::run_trials(&cfg, seed, 0, trials).unwrap();
+            let res = batch::run_trials(&cfg, 0, trials).unwrap();
             let m = MeanCi::of(res.iter().map(|r| r.steps as f64));
             let sc = t
                 .cell_1based("start", start[0] as i64, start[1] as i64)
@@ -451,12 +456,13 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
         let cfg = Config {
             n: 11,
             rv: 0.0,
-            searcher: SearcherKind::Nsarw,
-            prior: PriorSpec::Uniform,
+            searcher: common::searcher("nsarw"),
+            prior: PriorKind::Uniform,
+            seed: 700,
             step_cap: 300,
             ..Config::default()
         };
-        let mut ep = Episode::trial(&cfg, 700, i).unwrap();
+        let mut ep = Episode::trial(&cfg, i).unwrap();
         ep.run();
         let t = ep.torus().clone();
         let mut count = vec![0u32; t.cells()];
@@ -481,7 +487,12 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
             count[next as usize] += 1;
             steps += 1;
         }
-        assert_eq!(ep.walker_counts(), &count[..], "trial {i}: walker counts");
+        let mut scratch = Vec::new();
+        assert_eq!(
+            ep.counts(Layer::Walker, &mut scratch).unwrap(),
+            &count[..],
+            "trial {i}: walker counts"
+        );
         assert!(ep.status() != Status::Running);
     }
     // Uniform choice among ties (positions in up, right, down, left order).

@@ -17,11 +17,11 @@
 mod common;
 
 use common::{freq_se, wilson, Z_1E4};
-use torus_search::config::{Config, SearcherKind};
+use torus_search::config::Config;
 use torus_search::episode::{Episode, Status};
 use torus_search::lattice::Move;
 use torus_search::mcts::Variant;
-use torus_search::prior::PriorSpec;
+use torus_search::prior::PriorKind;
 use torus_search::searchers::PolicyKind;
 
 // ---------------------------------------------------------------------------
@@ -38,7 +38,7 @@ fn t1_config(variant: Variant, rv: f64, start: [u32; 2], loops: u32) -> Config {
         rv,
         start,
         target: Some(T1_TARGET),
-        searcher: SearcherKind::Mcts,
+        searcher: common::searcher("mcts"),
         variant,
         rollout: PolicyKind::Rw,
         loops,
@@ -52,7 +52,14 @@ fn t1_config(variant: Variant, rv: f64, start: [u32; 2], loops: u32) -> Config {
 fn first_move_decreases(cfg: &Config, seed: u64, trials: u64) -> u64 {
     (0..trials)
         .filter(|&i| {
-            let mut ep = Episode::trial(cfg, seed, i).unwrap();
+            let mut ep = Episode::trial(
+                &Config {
+                    seed,
+                    ..cfg.clone()
+                },
+                i,
+            )
+            .unwrap();
             let t = ep.torus().clone();
             let d0 = t.l1(ep.position(), ep.target());
             assert!(d0 > 0 && ep.status() == Status::Running);
@@ -65,7 +72,14 @@ fn first_move_decreases(cfg: &Config, seed: u64, trials: u64) -> u64 {
 /// The chance that a uniformly random move decreases the distance: the
 /// number of distance-reducing moves over 4.
 fn chance(cfg: &Config) -> f64 {
-    let ep = Episode::trial(cfg, 0, 0).unwrap();
+    let ep = Episode::trial(
+        &Config {
+            seed: 0,
+            ..cfg.clone()
+        },
+        0,
+    )
+    .unwrap();
     let t = ep.torus();
     let d0 = t.l1(ep.position(), ep.target());
     Move::ALL
@@ -189,7 +203,14 @@ fn theorem1_far_from_target_table() {
 fn backtracks(cfg: &Config, seed: u64, trials: u64, moves: u32) -> (u64, u64) {
     let (mut bad, mut eligible) = (0, 0);
     for i in 0..trials {
-        let mut ep = Episode::trial(cfg, seed, i).unwrap();
+        let mut ep = Episode::trial(
+            &Config {
+                seed,
+                ..cfg.clone()
+            },
+            i,
+        )
+        .unwrap();
         for _ in 0..moves {
             if ep.step_move() != Status::Running {
                 break;
@@ -219,23 +240,23 @@ fn theorem2_cells_variant_avoids_its_own_path_like_nsarw() {
     let base = Config {
         n: N,
         rv: 1.0,
-        prior: PriorSpec::Uniform,
+        prior: PriorKind::Uniform,
         loops: 50,
         rollout_cap: 2_000,
         ..Config::default()
     };
     let mcts = Config {
-        searcher: SearcherKind::Mcts,
+        searcher: common::searcher("mcts"),
         variant: Variant::Cells,
         rollout: PolicyKind::Rw,
         ..base.clone()
     };
     let rw = Config {
-        searcher: SearcherKind::Rw,
+        searcher: common::searcher("rw"),
         ..base.clone()
     };
     let nsarw = Config {
-        searcher: SearcherKind::Nsarw,
+        searcher: common::searcher("nsarw"),
         ..base
     };
     let (mb, me) = backtracks(&mcts, 2001, TRIALS, MOVES);

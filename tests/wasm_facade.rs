@@ -1,12 +1,12 @@
-//! Facade tests: the `#[wasm_bindgen]` handles in `src/wasm.rs`, called the
-//! way the page calls them (config objects parsed from JSON), in headless
-//! Chromium. Run with `cargo test --target wasm32-unknown-unknown`
-//! (CHROMEDRIVER=/usr/bin/chromedriver; `make test` wires it up).
+//! Facade tests: the `#[wasm_bindgen]` functions and the `Race` handle in
+//! `src/wasm.rs`, called the way the page calls them (config objects parsed
+//! from JSON, frames read back as JS objects), in headless Chromium. Run with
+//! `cargo test --target wasm32-unknown-unknown` (`make test` wires it up).
 #![cfg(target_arch = "wasm32")]
 
 use torus_search::config::Config;
 use torus_search::episode::Episode as CoreEpisode;
-use torus_search::wasm::{self as facade, EpisodeHandle as Episode};
+use torus_search::wasm::{self as facade, Race};
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::*;
 
@@ -20,211 +20,252 @@ fn get(obj: &JsValue, key: &str) -> JsValue {
     js_sys::Reflect::get(obj, &JsValue::from_str(key)).expect("property")
 }
 
-fn small() -> JsValue {
-    js(r#"{"n":15,"prior":{"kind":"gaussian","sigma":3},"loops":20,"keep_traces":2}"#)
+fn num(obj: &JsValue, key: &str) -> f64 {
+    get(obj, key)
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} is not a number"))
 }
 
-/// Reads `len` u32 values at byte offset `ptr` of this module's own memory.
-fn u32s(ptr: u32, len: u32) -> Vec<u32> {
-    // SAFETY: the facade returned a pointer into a live buffer of that length,
-    // and no facade call has happened since.
-    unsafe { std::slice::from_raw_parts(ptr as *const u32, len as usize).to_vec() }
+fn message(e: wasm_bindgen::JsError) -> String {
+    let v: JsValue = e.into();
+    js_sys::Error::from(v).message().as_string().unwrap()
 }
 
-fn bytes(ptr: u32, len: usize) -> Vec<u8> {
-    // SAFETY: as above.
-    unsafe { std::slice::from_raw_parts(ptr as *const u8, len).to_vec() }
+fn race(json: &str) -> Race {
+    Race::new(js(json)).map_err(JsValue::from).unwrap()
+}
+
+/// The frames for `requests` (a JSON array), as JS objects.
+fn frames(r: &mut Race, requests: &str) -> Vec<JsValue> {
+    js_sys::Array::from(&r.frames(js(requests)).map_err(JsValue::from).unwrap())
+        .iter()
+        .collect()
+}
+
+fn u32s(bytes: &JsValue) -> Vec<u32> {
+    js_sys::Uint8Array::new(bytes)
+        .to_vec()
+        .chunks_exact(4)
+        .map(|b| u32::from_le_bytes(b.try_into().unwrap()))
+        .collect()
 }
 
 #[wasm_bindgen_test]
-fn version_and_default_config() {
+fn version_schema_and_config_checks() {
     assert_eq!(facade::version(), env!("CARGO_PKG_VERSION"));
-    let d = facade::default_config().map_err(JsValue::from).unwrap();
-    assert_eq!(get(&d, "n").as_f64(), Some(40.0));
-    let checked = facade::check_config(d).map_err(JsValue::from).unwrap();
-    assert_eq!(get(&checked, "loops").as_f64(), Some(100.0));
+    let schema = facade::schema().map_err(JsValue::from).unwrap();
+    let params = js_sys::Array::from(&get(&schema, "params"));
+    let keys: Vec<String> = params
+        .iter()
+        .map(|p| get(&p, "key").as_string().unwrap())
+        .collect();
+    assert_eq!(keys.len(), torus_search::config::PARAMS.len());
+    assert!(keys.contains(&"seed".to_string()));
+    let loops = params
+        .iter()
+        .find(|p| get(p, "key").as_string().as_deref() == Some("loops"))
+        .unwrap();
+    assert_eq!(get(&loops, "max").as_string().as_deref(), Some("10000000"));
+    assert_eq!(js_sys::Array::from(&get(&schema, "layers")).length(), 6);
+    let checked = facade::check_config(js("{}"))
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(num(&checked, "loops"), 100.0);
+    assert_eq!(get(&checked, "seed").as_string().as_deref(), Some("1"));
     assert!(facade::last_panic().is_none());
 }
 
 #[wasm_bindgen_test]
 fn bad_configs_are_errors_naming_the_field() {
-    let msg = |v: JsValue| match Episode::new(v, 1) {
-        Ok(_) => panic!("accepted"),
-        Err(e) => {
-            let v: JsValue = e.into();
-            js_sys::Error::from(v).message().as_string().unwrap()
-        }
+    let msg = |json: &str| match Race::new(js(&format!("[{json}]"))) {
+        Ok(_) => panic!("accepted {json}"),
+        Err(e) => message(e),
     };
     assert!(
-        msg(js(r#"{"n":2}"#)).starts_with("n must be"),
+        msg(r#"{"n":2}"#).starts_with("n must be"),
         "{}",
-        msg(js(r#"{"n":2}"#))
+        msg(r#"{"n":2}"#)
     );
-    assert!(msg(js(r#"{"mu":5}"#)).starts_with("mu must be"));
-    assert!(msg(js(r#"{"start":[41,1]}"#)).starts_with("start must be"));
-    assert!(msg(js(r#"{"searcher":"astar"}"#)).contains("astar"));
-    assert!(msg(js(r#"{"bogus":1}"#)).contains("bogus"));
+    assert!(msg(r#"{"mu":5}"#).starts_with("mu must be"));
+    assert!(msg(r#"{"start":[41,1]}"#).starts_with("start must be"));
+    assert!(msg(r#"{"searcher":"astar"}"#).contains("astar"));
+    assert!(msg(r#"{"bogus":1}"#).contains("bogus"));
+    // A seed is never wrapped or rounded.
+    assert!(msg(r#"{"seed":"18446744073709551616"}"#).contains("seed must be"));
+    assert!(msg(r#"{"seed":1152921504606846976}"#).contains("must be strings"));
+    assert!(msg(r#"{"seed":-1}"#).contains("seed must be"));
     assert!(facade::check_config(js(r#"{"loops":0}"#)).is_err());
+    assert!(Race::new(js("{}")).is_err(), "not an array");
+    assert!(Race::new(js("[]")).is_err(), "no config");
 }
 
 #[wasm_bindgen_test]
-fn stepping_and_zero_copy_path() {
-    let mut h = Episode::new(small(), 7).map_err(JsValue::from).unwrap();
-    assert_eq!(h.status(), "running");
-    assert_eq!(h.n(), 15);
-    assert_eq!(h.path_len(), 1);
-    assert_eq!(h.position(), h.start());
-    // One loop at a time: the decision is under way, no move yet.
-    assert!(!h.step_loops(1));
-    assert_eq!(h.loops_done(), 1);
-    assert_eq!(h.rollouts_total(), 1.0);
-    assert_eq!(h.steps(), 0);
-    // The rest of the decision, then the move.
-    assert!(h.step_loops(100));
-    assert_eq!(h.steps(), 1);
-    assert_eq!(h.rollouts_total(), 20.0);
-    assert_eq!(h.step_move(), h.status());
-    assert_eq!(h.steps(), 2);
-    let view = u32s(h.path_ptr(), h.path_len());
-    assert_eq!(view, h.path());
-    assert_eq!(view.len(), 3);
-    assert_eq!(*view.last().unwrap(), h.position());
-}
-
-#[wasm_bindgen_test]
-fn facade_matches_the_core_episode_exactly() {
-    let cfg_json =
-        r#"{"n":12,"prior":{"kind":"gaussian","sigma":2},"loops":15,"belief":"posterior"}"#;
-    let mut h = Episode::new(js(cfg_json), 99)
-        .map_err(JsValue::from)
-        .unwrap();
-    // Loop-sized slices, as a browser frame does them.
-    while h.status() == "running" && h.steps() < 500 {
-        h.step_loops(4);
-    }
-    let cfg: Config = serde_json::from_str(cfg_json).unwrap();
-    let mut core = CoreEpisode::new(&cfg, 99).unwrap();
-    let r = core.run();
-    assert_eq!(h.path(), core.path());
-    assert_eq!(h.steps(), r.steps);
-    assert_eq!(h.optimal(), r.optimal);
-    assert_eq!(h.target(), r.target);
-    let res = h.result().map_err(JsValue::from).unwrap();
-    assert_eq!(get(&res, "steps").as_f64(), Some(r.steps as f64));
-}
-
-#[wasm_bindgen_test]
-fn heatmap_layers_render_to_rgba() {
-    let mut h = Episode::new(small(), 3).map_err(JsValue::from).unwrap();
-    h.step_move();
-    let n2 = 15 * 15;
-    for layer in ["prior", "plan", "posterior", "visits", "searched"] {
-        for scale in ["linear", "stretch", "log"] {
-            let ptr = h
-                .render_layer(layer, "viridis", scale, 0, 255)
-                .map_err(JsValue::from)
-                .unwrap();
-            assert_ne!(ptr, 0, "{layer}");
-            assert!(h.layer_max() > 0.0, "{layer}");
-            let px = bytes(ptr, 4 * n2);
-            assert!(
-                px.chunks(4).any(|p| p[3] > 0),
-                "{layer} {scale} is all transparent"
-            );
-        }
-    }
-    // Prior mass sums to 1; the opaque rendering has alpha 255 everywhere.
-    let ptr = h
-        .render_layer("prior", "cividis", "linear", 255, 255)
-        .map_err(JsValue::from)
-        .unwrap();
-    assert!((h.layer_sum() - 1.0).abs() < 1e-9);
-    assert!(bytes(ptr, 4 * n2).chunks(4).all(|p| p[3] == 255));
-    // MCTS has no walker counts: an empty layer is pointer 0.
-    assert_eq!(
-        h.render_layer("walker", "ember", "linear", 0, 255)
-            .map_err(JsValue::from)
-            .unwrap(),
-        0
-    );
-    assert!(h.render_layer("nope", "viridis", "linear", 0, 255).is_err());
-    assert!(h.render_layer("prior", "jet", "linear", 0, 255).is_err());
-    assert!(h.render_layer("prior", "viridis", "cubic", 0, 255).is_err());
-    assert_eq!(
-        facade::palette_lut("ember")
-            .map_err(JsValue::from)
-            .unwrap()
-            .len(),
-        1024
-    );
-    let rgba = facade::colorize_values(&[0.0, 1.0, 2.0], "viridis", "linear", 0, 255)
-        .map_err(JsValue::from)
-        .unwrap();
-    assert_eq!(rgba.len(), 12);
-    assert_eq!(rgba[3], 0);
-}
-
-#[wasm_bindgen_test]
-fn traces_and_decision() {
-    let mut h = Episode::new(small(), 5).map_err(JsValue::from).unwrap();
-    assert_eq!(h.collect_traces(), 0);
-    h.step_loops(3);
-    let count = h.collect_traces();
-    assert_eq!(count, 2, "keep_traces = 2");
-    let offsets = u32s(h.trace_offsets_ptr(), count + 1);
-    assert_eq!(offsets[0], 0);
-    let cells = u32s(h.trace_cells_ptr(), offsets[count as usize]);
-    // Each trace starts at the searcher's cell.
-    assert_eq!(cells[0], h.position());
-    let targets = u32s(h.trace_targets_ptr(), count);
-    assert!(targets.iter().all(|&t| t < 225));
-    let d = h.decision().map_err(JsValue::from).unwrap();
-    let children = js_sys::Array::from(&get(&d, "children"));
-    assert_eq!(children.length(), 4);
-    let picked: f64 = children
-        .iter()
-        .map(|c| get(&c, "selected").as_f64().unwrap())
-        .sum();
-    assert_eq!(picked, 3.0);
-    assert_eq!(get(&d, "c").as_f64(), Some(std::f64::consts::SQRT_2));
-}
-
-#[wasm_bindgen_test]
-fn walkers_and_time_budgets() {
-    let mut h = Episode::new(
-        js(r#"{"n":10,"searcher":"nsarw","prior":{"kind":"uniform"}}"#),
-        2,
-    )
+fn url_parameters_parse_set_and_write_back() {
+    let out = facade::parse_params(js(
+        r#"[["n","12"],["loops","0"],["seed","18446744073709551615"]]"#,
+    ))
     .map_err(JsValue::from)
     .unwrap();
-    assert!(h.step_loops(1), "a walker moves on every call");
-    assert_eq!(h.steps(), 1);
-    assert!(
-        h.render_layer("walker", "ember", "linear", 0, 255)
-            .map_err(JsValue::from)
-            .unwrap()
-            != 0
+    let cfg = get(&out, "config");
+    assert_eq!(num(&cfg, "n"), 12.0);
+    assert_eq!(num(&cfg, "loops"), 100.0, "a bad value keeps the default");
+    assert_eq!(
+        get(&cfg, "seed").as_string().as_deref(),
+        Some("18446744073709551615")
     );
-    assert!(h.decision().is_ok());
-    // A decision-time budget uses performance.now(): 2 ms per move.
-    let mut t = Episode::new(js(r#"{"n":20,"decision_ms":2}"#), 4)
+    let errors = js_sys::Array::from(&get(&out, "errors"));
+    assert_eq!(errors.length(), 1);
+    assert_eq!(
+        get(&errors.get(0), "field").as_string().as_deref(),
+        Some("loops")
+    );
+    // Editing n keeps the start inside.
+    let cfg = facade::set_param(js(r#"{"n":40,"start":[30,30]}"#), "n", "20")
         .map_err(JsValue::from)
         .unwrap();
+    assert_eq!(
+        js_sys::Array::from(&get(&cfg, "start")).get(0).as_f64(),
+        Some(20.0)
+    );
+    assert!(facade::set_param(cfg.clone(), "c", "-1").is_err());
+    let pairs = js_sys::Array::from(
+        &facade::config_params(cfg.clone(), false)
+            .map_err(JsValue::from)
+            .unwrap(),
+    );
+    let flat: Vec<String> = pairs
+        .iter()
+        .map(|p| js_sys::Array::from(&p).join("=").as_string().unwrap())
+        .collect();
+    assert_eq!(flat, ["n=20", "start=20,20", "seed=1"]);
+    let applicable = js_sys::Array::from(
+        &facade::applicable(js(r#"{"searcher":"rw"}"#))
+            .map_err(JsValue::from)
+            .unwrap(),
+    );
+    assert!(!applicable.includes(&JsValue::from_str("loops"), 0));
+    let d = facade::describe_config(js("{}"))
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(
+        get(&d, "label").as_string().as_deref(),
+        Some("MCTS cells · rw rollouts · L=100")
+    );
+}
+
+#[wasm_bindgen_test]
+fn frames_carry_the_path_layers_decision_and_traces() {
+    let mut r = race(r#"[{"n":15,"sigma":3,"loops":20,"keep_traces":2,"seed":"7"}]"#);
+    let info = js_sys::Array::from(&r.describe().map_err(JsValue::from).unwrap()).get(0);
+    assert_eq!(get(&info, "deliberates").as_bool(), Some(true));
+    assert_eq!(num(&info, "n"), 15.0);
+    r.step_loop();
+    let req = r#"[{"layers":[{"layer":"prior","palette":"viridis","scale":"linear","alpha":[255,255]},
+                             {"layer":"visits","palette":"ember","scale":"log","alpha":[0,235]},
+                             {"layer":"walker","palette":"ember","scale":"log","alpha":[0,235]}],
+                  "path_from":0,"traces":true}]"#;
+    let f = frames(&mut r, req).remove(0);
+    assert_eq!(get(&f, "status").as_string().as_deref(), Some("running"));
+    assert_eq!(num(&f, "steps"), 0.0);
+    assert_eq!(num(&f, "loops_done"), 1.0);
+    let layers = js_sys::Array::from(&get(&f, "layers"));
+    assert_eq!(layers.length(), 2, "MCTS has no walker counts");
+    let prior = layers.get(0);
+    let rgba = js_sys::Uint8Array::new(&get(&prior, "rgba"));
+    assert_eq!(rgba.length(), 4 * 225);
+    assert!((num(&prior, "sum") - 1.0).abs() < 1e-9);
+    let key = num(&prior, "key");
+    assert_eq!(u32s(&get(&f, "path")), vec![num(&info, "start") as u32]);
+    let d = get(&f, "decision");
+    let picked: f64 = js_sys::Array::from(&get(&d, "children"))
+        .iter()
+        .map(|c| num(&c, "selected"))
+        .sum();
+    assert_eq!(picked, 1.0);
+    let leading = js_sys::Array::from(&get(&d, "leading"));
+    assert!(leading.iter().any(|l| l.as_bool() == Some(true)));
+    assert_eq!(js_sys::Array::from(&get(&f, "traces")).length(), 1);
+    // Held layers come back as `same`; the path only from where the page is.
+    r.step_move();
+    let held = format!(
+        r#"[{{"layers":[{{"layer":"prior","palette":"viridis","scale":"linear","alpha":[255,255],"have":{key}}}],"path_from":1}}]"#
+    );
+    let f = frames(&mut r, &held).remove(0);
+    let prior = js_sys::Array::from(&get(&f, "layers")).get(0);
+    assert_eq!(get(&prior, "same").as_bool(), Some(true));
+    assert!(get(&prior, "rgba").is_null());
+    assert_eq!(num(&f, "path_from"), 1.0);
+    assert_eq!(u32s(&get(&f, "path")).len(), 1);
+    // Requests are checked.
+    assert!(r.frames(js(r#"[{"layers":[{"layer":"nope"}]}]"#)).is_err());
+    assert!(r.frames(js(r#"[{"colour":1}]"#)).is_err());
+}
+
+#[wasm_bindgen_test]
+fn the_facade_matches_the_core_episode_exactly() {
+    let json = r#"{"n":12,"sigma":2,"loops":15,"belief":"posterior","seed":"99"}"#;
+    let mut r = race(&format!("[{json}]"));
+    // Loop-sized slices, as the worker runs them.
+    while r.running() > 0 {
+        r.advance(4.0);
+    }
+    let cfg: Config = serde_json::from_str(json).unwrap();
+    let mut core = CoreEpisode::new(&cfg).unwrap();
+    let res = core.run();
+    let exported = js_sys::Array::from(&r.export().map_err(JsValue::from).unwrap()).get(0);
+    let path: Vec<u32> = js_sys::Array::from(&get(&exported, "path"))
+        .iter()
+        .map(|c| c.as_f64().unwrap() as u32)
+        .collect();
+    assert_eq!(path, core.path());
+    let result = get(&exported, "result");
+    assert_eq!(num(&result, "steps"), res.steps as f64);
+    assert_eq!(num(&result, "target"), res.target as f64);
+    assert_eq!(
+        get(&get(&exported, "config"), "seed")
+            .as_string()
+            .as_deref(),
+        Some("99"),
+        "an export carries the seed"
+    );
+}
+
+#[wasm_bindgen_test]
+fn walkers_race_and_time_budgets() {
+    let mut r = race(r#"[{"n":10,"loops":10,"seed":"2"},{"n":10,"searcher":"nsarw","seed":"2"}]"#);
+    let info = js_sys::Array::from(&r.describe().map_err(JsValue::from).unwrap());
+    assert_eq!(num(&info.get(0), "target"), num(&info.get(1), "target"));
+    assert_eq!(get(&info.get(1), "deliberates").as_bool(), Some(false));
+    r.advance(35.0);
+    let f = frames(
+        &mut r,
+        r#"[{}, {"layers":[{"layer":"walker","palette":"ember","scale":"linear","alpha":[0,255]}]}]"#,
+    );
+    assert!(
+        num(&f[1], "steps") <= num(&f[0], "steps"),
+        "the walker keeps pace"
+    );
+    assert!(get(&f[1], "decision").is_null());
+    assert_eq!(js_sys::Array::from(&get(&f[1], "layers")).length(), 1);
+    // A time budget reads performance.now(): 2 ms per move.
+    let mut t = race(r#"[{"n":20,"ms":2}]"#);
     let before = js_sys::Date::now();
     t.step_move();
-    assert_eq!(t.steps(), 1);
     assert!(js_sys::Date::now() - before >= 1.0);
-    assert!(t.rollouts_total() >= 1.0);
+    let f = frames(&mut t, "[{}]").remove(0);
+    assert_eq!(num(&f, "steps"), 1.0);
+    assert!(num(&f, "rollouts") >= 1.0);
 }
 
 #[wasm_bindgen_test]
 fn benchmark_workloads() {
-    let steps = facade::bench_rollout_steps("rw", 40, 1.0, 2.0, 1, 10_000.0)
+    let steps = facade::bench_rollout_steps("rw", 40, 1.0, 2.0, "1", 10_000.0)
         .map_err(JsValue::from)
         .unwrap();
     assert!(steps >= 10_000.0);
-    assert!(facade::bench_rollout_steps("teleport", 40, 1.0, 2.0, 1, 10.0).is_err());
-    let r = facade::bench_mcts_loops(js(r#"{"n":20,"loops":10}"#), 1, 50.0)
+    assert!(facade::bench_rollout_steps("teleport", 40, 1.0, 2.0, "1", 10.0).is_err());
+    assert!(facade::bench_rollout_steps("rw", 40, 1.0, 2.0, "18446744073709551616", 10.0).is_err());
+    let r = facade::bench_mcts_loops(js(r#"{"n":20,"loops":10}"#), 50.0)
         .map_err(JsValue::from)
         .unwrap();
     assert!(r[0] >= 50.0 && r[1] >= 4.0, "{r:?}");
@@ -232,25 +273,52 @@ fn benchmark_workloads() {
 
 #[wasm_bindgen_test]
 fn batch_trials_match_the_core_and_summarize() {
-    let json = r#"{"n":12,"prior":{"kind":"gaussian","sigma":2},"loops":10,"belief":"posterior","step_cap":500}"#;
+    let json = r#"{"n":12,"sigma":2,"loops":10,"step_cap":500,"seed":"3"}"#;
     let cfg: Config = serde_json::from_str(json).unwrap();
     let mut flat = Vec::new();
     for i in 0..4u64 {
-        let t = facade::run_trial(js(json), 3, i as f64)
+        let t = facade::run_trial(js(json), i as f64)
             .map_err(JsValue::from)
             .unwrap();
-        let core = CoreEpisode::trial(&cfg, 3, i).unwrap().run();
-        assert_eq!(t[0], core.steps as f64);
-        assert_eq!(t[1], core.optimal as f64);
-        assert_eq!(t[3], core.target as f64);
+        let core = CoreEpisode::trial(&cfg, i).unwrap().run();
+        assert_eq!(t, core.fields().to_vec());
         flat.extend(t);
     }
+    assert!(facade::run_trial(js(json), -1.0).is_err());
     let s = facade::summarize_trials(&flat)
         .map_err(JsValue::from)
         .unwrap();
-    assert_eq!(get(&s, "trials").as_f64(), Some(4.0));
-    let mean = get(&get(&s, "steps"), "mean").as_f64().unwrap();
+    assert_eq!(num(&s, "trials"), 4.0);
     let want = flat.chunks(7).map(|t| t[0]).sum::<f64>() / 4.0;
-    assert!((mean - want).abs() < 1e-9);
+    assert!((num(&s, "mean_steps") - want).abs() < 1e-9);
+    assert_eq!(js_sys::Array::from(&get(&s, "ci95_steps")).length(), 2);
     assert!(facade::summarize_trials(&[1.0, 2.0]).is_err());
+    assert!(facade::summarize_trials(&[1.0, 2.0, 0.5, 3.0, 0.0, 0.0, 0.0]).is_err());
+}
+
+#[wasm_bindgen_test]
+fn palettes_colours_and_paint() {
+    assert_eq!(
+        facade::palette_lut("ember")
+            .map_err(JsValue::from)
+            .unwrap()
+            .len(),
+        1024
+    );
+    assert!(facade::palette_lut("jet").is_err());
+    let rgba = facade::colorize_values(&[0.0, 1.0, 2.0], "viridis", "linear", 0, 255)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(rgba.len(), 12);
+    assert_eq!(rgba[3], 0);
+    assert!(facade::colorize_values(&[1.0], "viridis", "cubic", 0, 255).is_err());
+    let levels: Vec<u8> = (0..100).map(|i| (i % 16) as u8).collect();
+    let text = facade::encode_paint(&levels);
+    assert_eq!(
+        facade::decode_paint(&text, 10)
+            .map_err(JsValue::from)
+            .unwrap(),
+        levels
+    );
+    assert!(facade::decode_paint(&text, 11).is_err());
 }

@@ -1,17 +1,24 @@
-// The playback state machine. It owns the requestAnimationFrame loop. The
-// search itself runs in a worker (www/search-worker.js, reached through
-// www/search-session.js): each frame the controller draws the latest frame
-// the worker sent and asks for the next one, so the page's thread only draws
-// and never blocks on the search. It holds no game logic.
+// The playback state machine. It owns the requestAnimationFrame loop and
+// takes commands one way, through dispatch(); what happens comes back as
+// events. The search runs in a worker (www/search-worker.js, reached
+// through www/search-session.js): each animation frame the controller asks
+// for the next frame of the search and hands the latest one to its 'frame'
+// listeners, so the page's thread only draws. It holds no game logic.
 //
 // States: idle | running | paused | found | capped | error, mirrored to
 // document.body.dataset.state for tests.
 //
-// A run is a RunView (www/search-session.js); race mode has two. The
-// controller reads run.status(), run.loopsDone(), run.rolloutSteps() and
-// feeds run.apply(frame).
-
-export const STATES = ['idle', 'running', 'paused', 'found', 'capped', 'error'];
+// Commands (dispatch({ type, ... })):
+//   reset { configs, autoplay }  fresh runs from engine configs; resolves once they have a frame
+//   play | pause | toggle        playback
+//   stepLoop | stepMove          one MCTS loop / one real move on each unfinished run (pauses first)
+//   speed { speed }              loops per frame, or 'max'
+//   view { view }                what frames carry: { layers: [layer requests], traces: bool }
+//   redraw                       draw again with a fresh frame (view options changed)
+//   export                       resolves to each run's export (config, path, result)
+//   request { request, payload } a raw worker request (benchmarks, tests)
+// Events (on(name, fn)):
+//   state (state, prev) · runs (runViews) · frame ({ state, meter, runs }) · error (err)
 
 const TRANSITIONS = {
   idle: ['running', 'paused', 'found', 'capped', 'error', 'idle'],
@@ -25,27 +32,17 @@ const TRANSITIONS = {
 export class Controller {
   /**
    * @param {object} o
-   * @param {object} o.session              a SearchSession (or a stand-in with reset/request/current)
-   * @param {() => object} o.spec            the reset request for the current config: { runs: [{ core, label }], seed }
-   * @param {(runs) => object[]} o.views     the frame request for each run (layers, what the page holds)
-   * @param {(runs) => void} [o.onRuns]      called with fresh runs, before their first frame is drawn
-   * @param {(info) => void} o.draw          draws the runs (called once per frame that has news)
-   * @param {(state, prev) => void} [o.onState]
-   * @param {(err) => void} [o.onError]
-   * @param {(fn) => number} [o.raf]          requestAnimationFrame
+   * @param {object} o.session            a SearchSession (or a stand-in with reset/request/current)
+   * @param {(fn) => number} [o.raf]       requestAnimationFrame
    */
-  constructor({ session, spec, views, onRuns = () => {}, draw, onState = () => {}, onError = () => {}, raf = null }) {
+  constructor({ session, raf = null }) {
     this.session = session;
-    this.spec = spec;
-    this.views = views;
-    this.onRuns = onRuns;
-    this.drawFn = draw;
-    this.onState = onState;
-    this.onError = onError;
     this.raf = raf ?? (typeof requestAnimationFrame !== 'undefined' ? (fn) => requestAnimationFrame(fn) : null);
+    this.listeners = { state: [], runs: [], frame: [], error: [] };
     this.runs = [];
+    this.view = { layers: [], traces: false };
     this.state = 'idle';
-    this.speed = 10; // loops per frame, or 'max'
+    this.speed = 10;
     this.rafId = 0;
     this.dirty = true;
     this.wantFrame = false;
@@ -53,8 +50,53 @@ export class Controller {
     this.resets = 0;
     this.ready = Promise.resolve(false);
     this.meter = { frames: [], loops: [], steps: [], fps: 0, loopsPerS: 0, stepsPerS: 0 };
-    this.frame = this.frame.bind(this);
+    this.tick = this.tick.bind(this);
     this.setState('idle');
+  }
+
+  /** Subscribes to an event; returns the unsubscribe function. */
+  on(name, fn) {
+    this.listeners[name].push(fn);
+    return () => {
+      this.listeners[name] = this.listeners[name].filter((f) => f !== fn);
+    };
+  }
+
+  emit(name, ...args) {
+    for (const fn of this.listeners[name]) fn(...args);
+  }
+
+  /** The one way in: see the command list at the top of this file. */
+  dispatch(cmd) {
+    switch (cmd.type) {
+      case 'reset':
+        this.ready = this.reset(cmd.configs, cmd.autoplay);
+        return this.ready;
+      case 'play':
+        return this.play();
+      case 'pause':
+        return this.pause();
+      case 'toggle':
+        return this.toggle();
+      case 'stepLoop':
+      case 'stepMove':
+        return this.step(cmd.type);
+      case 'speed':
+        this.speed = cmd.speed;
+        this.send('speed', { speed: cmd.speed });
+        return undefined;
+      case 'view':
+        this.view = cmd.view;
+        return this.redraw();
+      case 'redraw':
+        return this.redraw();
+      case 'export':
+        return this.send('export').then((a) => a?.runs ?? null);
+      case 'request':
+        return this.send(cmd.request, cmd.payload ?? {});
+      default:
+        throw new Error(`unknown command ${JSON.stringify(cmd.type)}`);
+    }
   }
 
   setState(next) {
@@ -64,7 +106,7 @@ export class Controller {
     }
     this.state = next;
     if (typeof document !== 'undefined') document.body.dataset.state = next;
-    this.onState(next, prev);
+    this.emit('state', next, prev);
     this.dirty = true;
   }
 
@@ -72,8 +114,8 @@ export class Controller {
     this.runs = [];
     if (this.state !== 'error') this.setState('error');
     this.session.request('pause').catch(() => {});
-    this.onError(err);
-    this.requestDraw();
+    this.emit('error', err);
+    this.redraw();
   }
 
   /** Sends a request to the worker; a failure puts the page in `error` and resolves to null. */
@@ -89,16 +131,6 @@ export class Controller {
     }
   }
 
-  /**
-   * (Re)builds the runs from the config; autoplay starts them. Resolves to
-   * true once the fresh runs have their first frame (false if it failed or a
-   * newer reset overtook it).
-   */
-  reset(opts) {
-    this.ready = this.resetNow(opts);
-    return this.ready;
-  }
-
   /** Resolves once the newest reset has finished (tests and tools wait on it). */
   async whenReady() {
     let p;
@@ -109,13 +141,17 @@ export class Controller {
     return this.runs.length > 0;
   }
 
-  async resetNow({ autoplay = false } = {}) {
+  /**
+   * (Re)builds the runs. Resolves to true once the fresh runs have their
+   * first frame (false if it failed or a newer reset overtook it).
+   */
+  async reset(configs, autoplay = false) {
     const ticket = ++this.resets;
     this.runs = [];
     if (this.state !== 'idle') this.setState('idle');
     let runs;
     try {
-      runs = await this.session.reset(this.spec());
+      runs = await this.session.reset(configs);
     } catch (err) {
       if (ticket === this.resets) this.fail(err);
       return false;
@@ -125,7 +161,7 @@ export class Controller {
     this.meter.frames = [];
     this.meter.loops = [];
     this.meter.steps = [];
-    this.onRuns(runs);
+    this.emit('runs', runs);
     if (!(await this.refresh())) return false;
     this.settle();
     if (autoplay && this.isLive()) this.play();
@@ -140,7 +176,7 @@ export class Controller {
     if (!this.isLive() || !this.runs.length) return;
     this.setState('running');
     this.send('play', { speed: this.speed });
-    this.requestDraw();
+    this.redraw();
   }
 
   pause() {
@@ -148,38 +184,29 @@ export class Controller {
       this.setState('paused');
       this.send('pause');
       // The worker may have searched on since the last frame: show where it stopped.
-      this.requestDraw();
+      this.redraw();
     }
   }
 
   toggle() {
     if (this.state === 'running') this.pause();
     else if (this.state === 'found' || this.state === 'capped') {
-      this.reset({ autoplay: true });
+      // Replay the same runs from the start.
+      const configs = this.runs.map((r) => r.config);
+      this.dispatch({ type: 'reset', configs, autoplay: true });
     } else this.play();
-  }
-
-  /** One MCTS loop (selection, rollout, backpropagation) on each unfinished run. */
-  stepLoop() {
-    return this.step('stepLoop');
-  }
-
-  /** Finishes the current decision and makes the real move, on each unfinished run. */
-  stepMove() {
-    return this.step('stepMove');
   }
 
   async step(type) {
     if (!this.isLive() || !this.runs.length) return;
     this.pause();
     const runs = this.runs;
-    const answer = await this.send(type, { views: this.views(runs) });
+    const answer = await this.send(type, { requests: this.requests(runs) });
     this.take(answer, runs);
   }
 
-  setSpeed(speed) {
-    this.speed = speed;
-    this.send('speed', { speed });
+  requests(runs) {
+    return runs.map((r) => r.request(this.view));
   }
 
   /** Applies a frame answer if it is for the current runs; true if applied. */
@@ -192,11 +219,11 @@ export class Controller {
     return true;
   }
 
-  /** Asks for a fresh frame now (no search at a set speed beyond the usual). */
+  /** Asks for a fresh frame now (at a set speed the worker searches a frame's worth first). */
   async refresh() {
     const runs = this.runs;
     if (!runs.length) return false;
-    const answer = await this.send('frame', { views: this.views(runs) });
+    const answer = await this.send('frame', { requests: this.requests(runs) });
     return this.take(answer, runs);
   }
 
@@ -210,19 +237,19 @@ export class Controller {
     }
   }
 
-  /** Redraws, with a fresh frame from the worker (layer choices may have changed). */
-  requestDraw() {
+  /** Draws again, with a fresh frame from the worker. */
+  redraw() {
     this.dirty = true;
     this.wantFrame = true;
     this.schedule();
   }
 
   schedule() {
-    if (!this.rafId && this.raf) this.rafId = this.raf(this.frame);
+    if (!this.rafId && this.raf) this.rafId = this.raf(this.tick);
   }
 
   /** One animation frame: ask for the next frame of the search, and draw what has arrived. */
-  frame(ts) {
+  tick(ts) {
     this.rafId = 0;
     const running = this.state === 'running';
     if ((running || this.wantFrame) && !this.inflight && this.runs.length) {
@@ -237,7 +264,7 @@ export class Controller {
       this.dirty = false;
       this.measure(ts);
       try {
-        this.drawFn({ state: this.state, meter: this.meter });
+        this.emit('frame', { state: this.state, meter: this.meter, runs: this.runs });
       } catch (err) {
         this.fail(err);
       }
@@ -260,7 +287,7 @@ export class Controller {
     let loops = 0;
     let steps = 0;
     for (const r of this.runs) {
-      loops += r.loopsDone();
+      loops += r.work();
       steps += r.rolloutSteps();
     }
     keep(m.frames, [ts, 0]);

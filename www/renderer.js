@@ -1,8 +1,7 @@
 // Pure drawing: no engine calls, no game logic. Everything it draws is handed
-// to it in a `scene` object (typed-array views over wasm memory and plain
-// numbers); it never keeps those views past the draw call.
+// to it in a `scene` object (typed arrays the worker sent, and plain numbers).
 //
-// Heatmaps: one RGBA buffer per layer (built in Rust, src/render.rs) goes
+// Heatmaps: one RGBA buffer per layer (coloured in Rust, src/view.rs) goes
 // through ONE putImageData into an N×N offscreen canvas, which drawImage
 // scales onto the view with smoothing off. Paths are wrap-aware: a step that
 // crosses the boundary is drawn to the edge and continues from the opposite
@@ -251,7 +250,7 @@ export class Renderer {
    *   identity: a new key redraws the path),
    *   start, position, target (−1 = none), showTarget,
    *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
-   *   decision: { visits: [4], chosen } | null, grid: bool, tiling: bool, found: bool
+   *   decision: { visits: [4], leading: [4 bools] } | null, grid: bool, tiling: bool
    * }
    * Returns true while the path is not drawn to its end yet (a long path after
    * a resize or a new run): draw again next frame.
@@ -418,7 +417,7 @@ export class Renderer {
         const y0 = y + 0.5 + ddy * 0.55;
         const x1 = x + 0.5 + ddx * len;
         const y1 = y + 0.5 + ddy * len;
-        const chosen = m === d.chosen;
+        const chosen = d.leading[m];
         const w = lw(chosen ? 3.5 : 2);
         ctx.strokeStyle = '#000';
         ctx.lineWidth = w + lw(2);

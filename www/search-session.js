@@ -1,81 +1,83 @@
 // The page's side of the search worker (www/search-worker.js): a request /
-// answer channel, and a RunView per episode that holds what the page last
-// received (counters, the path so far, heatmap renderings, traces). The page
-// reads run views synchronously and never touches the worker's memory.
+// answer channel, and a RunView per run that holds what the page was last
+// sent (the frame header, the path so far, heatmap renderings, traces). The
+// page reads run views synchronously and never touches the worker's memory.
 
-/** One episode as the page sees it: static facts plus the latest frame. */
+/** One run as the page sees it: fixed facts plus the latest frame. */
 export class RunView {
+  /** @param {object} info one entry of the engine's Race.describe() */
   constructor(info) {
-    Object.assign(this, info); // label, core, isMcts, n, startCell, targetCell, optimalSteps, seed, serial
-    this.snap = {
+    // label, config, searcher, deliberates, help, n, start, target, optimal
+    Object.assign(this, info);
+    this.frame = {
       status: 'running',
       steps: 0,
-      position: info.startCell,
-      loopsDone: 0,
-      loopsTotal: 0,
+      position: info.start,
+      loops_done: 0,
+      work: 0,
       rollouts: 0,
-      rolloutSteps: 0,
+      rollout_steps: 0,
       truncated: 0,
-      decisionRollouts: 0,
-      decisionRolloutSteps: 0,
+      decision_rollouts: 0,
+      decision_rollout_steps: 0,
+      ratio: null,
+      searched_mass: 0,
       decision: null,
     };
     this.pathBuf = new Uint32Array(256);
     this.pathLen = 0;
-    this.layers = new Map(); // name -> { key, rgba, min, max, sum }
+    this.layers = new Map(); // layer name -> { key, rgba, min, min_nonzero, max, sum }
     this.traces = [];
     this.practice = -1;
   }
 
-  /** The frame request for this run: which layers, and what the page already holds. */
-  request(layers, traces) {
-    const have = {};
-    for (const l of layers) {
-      const got = this.layers.get(l.name);
-      if (got) have[l.name] = got.key;
-    }
-    return { layers, have, pathHave: this.pathLen, traces };
+  /**
+   * This run's frame request for the page's view: which layers (with the
+   * key of the rendering held, so unchanged ones are not resent), the path
+   * from where it is held, and traces for a searcher that deliberates.
+   * @param {{ layers: object[], traces: boolean }} view
+   */
+  request(view) {
+    return {
+      layers: view.layers.map((l) => ({ ...l, have: this.layers.get(l.layer)?.key ?? null })),
+      path_from: this.pathLen,
+      traces: view.traces && this.deliberates,
+    };
   }
 
   /** Takes in one frame from the worker. */
   apply(f) {
-    const { path, pathFrom, layers, traces, practice, ...snap } = f;
-    this.snap = snap;
-    const len = pathFrom + path.length;
+    const { path, path_from: from, layers, traces, practice, ...header } = f;
+    this.frame = header;
+    const cells = new Uint32Array(path.buffer, path.byteOffset, path.byteLength / 4);
+    const len = from + cells.length;
     if (len > this.pathBuf.length) {
       const grown = new Uint32Array(Math.max(len, 2 * this.pathBuf.length));
-      grown.set(this.pathBuf.subarray(0, pathFrom));
+      grown.set(this.pathBuf.subarray(0, from));
       this.pathBuf = grown;
     }
-    this.pathBuf.set(path, pathFrom);
+    this.pathBuf.set(cells, from);
     this.pathLen = len;
     for (const l of layers) {
-      if (!l.same) this.layers.set(l.name, l);
+      if (l.same) continue;
+      const rgba = new Uint8ClampedArray(l.rgba.buffer, l.rgba.byteOffset, l.rgba.byteLength);
+      this.layers.set(l.layer, { ...l, rgba });
     }
-    if (traces !== null) {
-      this.traces = traces;
-      this.practice = practice;
-    } else {
-      this.traces = [];
-      this.practice = -1;
-    }
+    this.traces = (traces ?? []).map((t) => new Uint32Array(t.buffer, t.byteOffset, t.byteLength / 4));
+    this.practice = practice ?? -1;
   }
 
   status() {
-    return this.snap.status;
+    return this.frame.status;
   }
 
-  steps() {
-    return this.snap.steps;
-  }
-
-  /** Loops so far (moves for a walker). */
-  loopsDone() {
-    return this.snap.loopsTotal;
+  /** Work so far: loops, or moves for a walker. */
+  work() {
+    return this.frame.work;
   }
 
   rolloutSteps() {
-    return this.snap.rolloutSteps;
+    return this.frame.rollout_steps;
   }
 
   /** The path so far as received (cells, start first). */
@@ -138,30 +140,25 @@ export class SearchSession {
   }
 
   /** Sends a request; resolves to the answer, rejects with an EngineError. */
-  request(type, payload = {}, transfer = []) {
+  request(type, payload = {}) {
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
       this.pending.set(id, { resolve, reject });
-      this.worker.postMessage({ type, id, ...payload }, transfer);
+      this.worker.postMessage({ type, id, ...payload });
     });
   }
 
-  /** Builds fresh runs; resolves to their RunViews (the controller drops overtaken ones). */
-  async reset(spec) {
+  /** Builds fresh runs from engine configs; resolves to their RunViews. */
+  async reset(configs) {
     if (this.trapped) this.spawn();
     await this.ready;
     const gen = ++this.gen;
-    const answer = await this.request('reset', { gen, ...spec });
+    const answer = await this.request('reset', { gen, configs });
     return answer.runs.map((info) => new RunView(info));
   }
 
   /** True if an answer belongs to the current runs. */
   current(answer) {
     return answer.gen === this.gen;
-  }
-
-  terminate() {
-    this.worker?.terminate();
-    this.worker = null;
   }
 }

@@ -1,25 +1,26 @@
 // The search worker: a dedicated Web Worker with its own wasm instance that
-// holds the page's episodes and runs the search, so the page's thread only
-// draws. At full speed it searches without pause, in slices of a few
-// milliseconds so that requests from the page are answered promptly; at a
-// set speed it runs that many loops per frame request.
+// holds the page's runs (one engine `Race`) and searches, so the page's
+// thread only draws. It keeps no game state of its own: the runs live in
+// the engine, and whether it searches is whatever the controller last said.
+// At full speed it searches without pause, in slices of a few milliseconds
+// so requests are answered promptly; at a set speed it runs that many loops
+// per frame request.
 //
-// Messages in (each with an `id`, answered once by { id, ok: true, ... } or
-// { id, ok: false, error, trap }):
-//   init   { module }                  instantiate the engine (a compiled WebAssembly.Module)
-//   reset  { gen, runs: [{ core, label }], seed }
-//                                      build fresh runs; answers { runs: [describe()] }
+// Messages in (each with an `id`, answered once by { id, gen, ok: true, ... }
+// or { id, gen, ok: false, error, trap }):
+//   init   { module }                   instantiate the engine (a compiled WebAssembly.Module)
+//   reset  { gen, configs }             build the runs; answers { runs } (Race.describe())
 //   play   { speed } / pause / speed { speed }
-//   frame  { views: [req per run] }    (at a set speed: that many loops first) answers { frames }
-//   stepLoop / stepMove { views }      one loop / one move on each unfinished run; answers { frames }
-//   export                             answers { runs: [exportData()] }
-//   benchLoops { config, seed, loops } answers { loops, ms }: one timed wasm call
-//   usage                              answers { usage: { wallMs, workMs, frameMs, frames } } since the last call
-//   panicForTest { message }           a deliberate wasm panic (the page's error path is tested with it)
-// Every answer to a reset or later carries the run generation `gen`, so the
-// page drops answers meant for runs it has already replaced.
+//   frame  { requests }                 (at a set speed: that many loops first) answers { frames }
+//   stepLoop / stepMove { requests }    one loop / one move on each unfinished run; answers { frames }
+//   export                              answers { runs } (Race.export())
+//   benchLoops { config, loops }        answers { loops, ms }: one timed wasm call
+//   usage                               answers { usage: { wallMs, workMs, frameMs, frames } } since the last call
+//   panicForTest { message }            a deliberate wasm panic (the page's error path is tested with it)
+// Every answer carries the run generation `gen`, so the page drops answers
+// meant for runs it has already replaced.
 
-import { loadEngine, Run, describeError } from './engine.js';
+import { loadEngine, describeError } from './engine.js';
 
 /** Longest stretch of search between looks at the message queue (ms). */
 const SLICE_MS = 6;
@@ -28,7 +29,7 @@ const FRAME_WORK_MS = 12;
 
 const st = {
   wasm: null,
-  runs: [],
+  race: null,
   gen: 0,
   playing: false,
   speed: 10,
@@ -43,45 +44,33 @@ const st = {
 const yieldChannel = new MessageChannel();
 yieldChannel.port1.onmessage = () => pump();
 
-function active() {
-  return st.runs.filter((r) => r.status() === 'running');
-}
+const running = () => (st.race ? st.race.running() : 0);
 
 /**
  * Runs loops on every unfinished run for about `budgetMs`, at most
- * `maxLoops` each. Loops go in chunks sized from the measured cost of a loop
+ * `maxLoops` each, in chunks sized from the measured cost of a loop
  * (rollout lengths vary a lot; the rollout cap bounds one).
  */
 function work(budgetMs, maxLoops) {
   const t0 = performance.now();
+  const deadline = t0 + budgetMs;
+  let remaining = maxLoops;
   try {
-    return workLoops(t0, budgetMs, maxLoops);
+    while (remaining > 0) {
+      const runs = running();
+      const left = deadline - performance.now();
+      if (!runs || left <= 0) break;
+      const fit = Math.floor(Math.min(2, left) / Math.max(st.loopMs * runs, 1e-4));
+      const k = Math.max(1, Math.min(remaining, fit, 1 << 14));
+      const c0 = performance.now();
+      st.race.advance(k);
+      // Exponential average (chunks of one loop are noisy).
+      st.loopMs = 0.7 * st.loopMs + 0.3 * ((performance.now() - c0) / k / runs);
+      remaining -= k;
+    }
   } finally {
     st.usage.workMs += performance.now() - t0;
   }
-}
-
-function workLoops(t0, budgetMs, maxLoops) {
-  const deadline = t0 + budgetMs;
-  let remaining = maxLoops;
-  let loops = 0;
-  while (remaining > 0) {
-    const runs = active();
-    if (!runs.length) break;
-    const left = deadline - performance.now();
-    if (left <= 0) break;
-    const perLoop = st.loopMs * runs.length;
-    const fit = Math.floor(Math.min(2, left) / Math.max(perLoop, 1e-4));
-    const k = Math.max(1, Math.min(remaining, fit, 1 << 14));
-    const c0 = performance.now();
-    for (const r of runs) r.stepLoops(k);
-    const dt = performance.now() - c0;
-    // Exponential average (chunks of one loop are noisy).
-    st.loopMs = 0.7 * st.loopMs + 0.3 * (dt / k / runs.length);
-    loops += k;
-    remaining -= k;
-  }
-  return loops;
 }
 
 function pump() {
@@ -93,20 +82,26 @@ function pump() {
     fail(null, err);
     return;
   }
-  if (active().length) schedule();
-  else st.playing = false;
+  schedule();
 }
 
 function schedule() {
-  if (st.pumping || !st.playing || st.speed !== 'max') return;
+  if (st.pumping || !st.playing || st.speed !== 'max' || !running()) return;
   st.pumping = true;
   yieldChannel.port2.postMessage(null);
 }
 
-function frames(views) {
+/** One frame per run; buffers are transferred, not copied again. */
+function frames(requests = []) {
   const t0 = performance.now();
+  const live = st.playing && running() > 0;
+  const out = st.race.frames(requests.map((r) => ({ ...r, live })));
   const transfer = [];
-  const out = st.runs.map((r, i) => r.frame(views?.[i] ?? { layers: [], pathHave: 0 }, transfer, st.playing && r.status() === 'running'));
+  for (const f of out) {
+    transfer.push(f.path.buffer);
+    for (const l of f.layers) if (l.rgba) transfer.push(l.rgba.buffer);
+    for (const t of f.traces ?? []) transfer.push(t.buffer);
+  }
   st.usage.frameMs += performance.now() - t0;
   st.usage.frames++;
   return { frames: out, transfer };
@@ -115,36 +110,12 @@ function frames(views) {
 function fail(id, err) {
   const trap = err instanceof WebAssembly.RuntimeError;
   if (trap) {
-    // The instance cannot be trusted after a trap: stop everything.
+    // The instance cannot be trusted after a trap: drop everything.
     st.trapped = true;
     st.playing = false;
-    st.runs = [];
+    st.race = null;
   }
   self.postMessage({ id, gen: st.gen, ok: false, error: describeError(err), trap });
-}
-
-function freeRuns() {
-  for (const r of st.runs) r.free();
-  st.runs = [];
-}
-
-function reset(msg) {
-  freeRuns();
-  st.gen = msg.gen;
-  st.playing = false;
-  const seed = BigInt(msg.seed);
-  st.runs = msg.runs.map((r) => new Run(r.core, seed, r.label));
-  if (st.runs.length === 2) {
-    // A walker racing MCTS moves in step with it (one real move each), so the
-    // boards compare paths rather than compute; once MCTS is done it runs free.
-    const [a, b] = st.runs;
-    const pace = (walker, mcts) => {
-      walker.pacer = () => (mcts.status() === 'running' ? mcts.h.steps() : Infinity);
-    };
-    if (a.isMcts && !b.isMcts) pace(b, a);
-    else if (!a.isMcts && b.isMcts) pace(a, b);
-  }
-  return { runs: st.runs.map((r) => r.describe()) };
 }
 
 const HANDLERS = {
@@ -152,7 +123,14 @@ const HANDLERS = {
     st.wasm = await loadEngine(msg.module);
     return { version: st.wasm.version() };
   },
-  reset,
+  reset(msg) {
+    st.race?.free();
+    st.race = null;
+    st.gen = msg.gen;
+    st.playing = false;
+    st.race = new st.wasm.Race(msg.configs);
+    return { runs: st.race.describe() };
+  },
   play(msg) {
     st.speed = msg.speed;
     st.playing = true;
@@ -169,21 +147,19 @@ const HANDLERS = {
     return {};
   },
   frame(msg) {
-    if (st.playing && st.speed !== 'max') {
-      work(FRAME_WORK_MS, st.speed);
-      if (!active().length) st.playing = false;
-    }
-    return frames(msg.views);
+    if (st.playing && st.speed !== 'max') work(FRAME_WORK_MS, st.speed);
+    return frames(msg.requests);
   },
   stepLoop(msg) {
-    st.playing = false;
-    for (const r of active()) r.stepLoops(1);
-    return frames(msg.views);
+    st.race.stepLoop();
+    return frames(msg.requests);
   },
   stepMove(msg) {
-    st.playing = false;
-    for (const r of active()) r.stepMove();
-    return frames(msg.views);
+    st.race.stepMove();
+    return frames(msg.requests);
+  },
+  export() {
+    return { runs: st.race.export() };
   },
   /** Time spent searching and building frames since the last call, and the wall time. */
   usage() {
@@ -192,14 +168,11 @@ const HANDLERS = {
     st.usage = { since: now, workMs: 0, frameMs: 0, frames: 0 };
     return { usage: u };
   },
-  /** Times `benchMctsLoops(config, seed, loops)` in one call here (the browser benchmark). */
+  /** Times `benchMctsLoops(config, loops)` in one call here (the browser benchmark). */
   benchLoops(msg) {
     const t0 = performance.now();
-    const [loops] = st.wasm.benchMctsLoops(msg.config, BigInt(msg.seed), msg.loops);
+    const [loops] = st.wasm.benchMctsLoops(msg.config, msg.loops);
     return { loops, ms: performance.now() - t0 };
-  },
-  export() {
-    return { runs: st.runs.map((r) => r.exportData()) };
   },
   panicForTest(msg) {
     st.wasm.panicForTest(msg.message);
@@ -216,6 +189,10 @@ self.onmessage = async (e) => {
   }
   if (st.trapped && msg.type !== 'init') {
     self.postMessage({ id: msg.id, gen: st.gen, ok: false, error: 'the engine crashed earlier: restart the page', trap: true });
+    return;
+  }
+  if (!st.race && !['init', 'reset', 'benchLoops', 'usage', 'panicForTest', 'play', 'pause', 'speed'].includes(msg.type)) {
+    self.postMessage({ id: msg.id, gen: st.gen, ok: false, error: `${msg.type}: no runs yet` });
     return;
   }
   try {

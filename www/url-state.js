@@ -1,47 +1,9 @@
-// The whole configuration lives in the URL query string.
+// The page's whole state lives in the URL query string: the engine's
+// configuration parameters, which the engine parses and writes (the schema
+// in src/config.rs: the same parser as the CLI's flags), and the page's own
+// view parameters (speed, autoplay, race), which only this module knows.
 //
-// parseParams(search) -> { config, messages }: every parameter is checked; an
-// invalid value yields a message naming the parameter and its allowed range
-// and the default is used instead. serializeConfig(config) -> query string
-// (only values that differ from the defaults, so links stay short; `seed` is
-// always written so a shared link reproduces the run).
-//
-// Pure module: no DOM access, so it is unit-testable in Node.
-
-export const SQRT2 = Math.SQRT2;
-
-/** Parameter specifications, in URL order. */
-export const SPECS = [
-  { key: 'n', kind: 'int', min: 3, max: 1024, def: 40, help: 'integer 3–1024' },
-  { key: 'prior', kind: 'enum', values: ['gaussian', 'delta', 'uniform', 'paint'], def: 'gaussian' },
-  { key: 'sigma', kind: 'float', min: 0, max: 10000, def: 5, help: 'number 0–10000 (0 = delta)' },
-  { key: 'rv', kind: 'float', min: 0, max: 100, def: 1, help: 'number 0–100' },
-  { key: 'start', kind: 'cell', def: [1, 1], help: '"x,y" with 1 ≤ x,y ≤ n' },
-  { key: 'searcher', kind: 'enum', values: ['mcts', 'rw', 'levy', 'nsarw'], def: 'mcts' },
-  { key: 'variant', kind: 'enum', values: ['cells', 'tree'], def: 'cells' },
-  { key: 'rollout', kind: 'enum', values: ['rw', 'levy', 'nsarw', 'greedy'], def: 'rw' },
-  { key: 'belief', kind: 'enum', values: ['prior', 'posterior'], def: 'posterior' },
-  { key: 'loops', kind: 'int', min: 1, max: 1000000, def: 100, help: 'integer 1–1000000' },
-  { key: 'ms', kind: 'float', min: 0, max: 60000, def: 0, help: 'number 0–60000 (0 = use loops)' },
-  { key: 'c', kind: 'float', min: 0, max: 100, def: SQRT2, help: 'number 0–100' },
-  { key: 'mu', kind: 'float', min: 1, max: 3, minOpen: true, def: 2, help: 'number in (1, 3]' },
-  { key: 'final', kind: 'enum', values: ['visits', 'mean', 'uct'], def: 'visits' },
-  { key: 'seed', kind: 'seed', def: 1n, help: 'integer 0–18446744073709551615' },
-  { key: 'speed', kind: 'speed', min: 1, max: 1000000, def: 10, help: 'loops per frame 1–1000000, or "max"' },
-  { key: 'autoplay', kind: 'bool', def: true, help: '1/0 or true/false' },
-  // Beyond the required names: the page's own view state.
-  { key: 'race', kind: 'enum', values: ['', 'mcts-cells', 'mcts-tree', 'rw', 'levy', 'nsarw'], def: '' },
-  { key: 'paint', kind: 'paint', def: '', help: 'run-length encoded weight grid' },
-];
-
-const SPEC_BY_KEY = Object.fromEntries(SPECS.map((s) => [s.key, s]));
-const U64_MAX = (1n << 64n) - 1n;
-
-export function defaults() {
-  const c = {};
-  for (const s of SPECS) c[s.key] = Array.isArray(s.def) ? [...s.def] : s.def;
-  return c;
-}
+// Pure module (no DOM): the engine is passed in, so Node tests use the real one.
 
 /** Shortens a user-supplied value for display in a message (never as HTML). */
 function shown(raw) {
@@ -49,158 +11,90 @@ function shown(raw) {
   return s.length > 40 ? `${s.slice(0, 40)}…` : s;
 }
 
-function allowed(spec) {
-  if (spec.kind === 'enum') return `one of ${spec.values.filter((v) => v !== '').join(', ')}`;
-  return spec.help;
-}
-
-/** Parses one raw string for a spec. Returns {ok, value} or {ok:false}. */
-export function parseValue(spec, raw, n) {
-  const s = String(raw).trim();
-  switch (spec.kind) {
-    case 'int': {
-      if (!/^[+-]?\d+$/.test(s)) return { ok: false };
-      const v = Number(s);
-      return Number.isSafeInteger(v) && v >= spec.min && v <= spec.max ? { ok: true, value: v } : { ok: false };
-    }
-    case 'float': {
-      if (!/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(s)) return { ok: false };
-      const v = Number(s);
-      if (!Number.isFinite(v) || v > spec.max) return { ok: false };
-      if (spec.minOpen ? v <= spec.min : v < spec.min) return { ok: false };
-      return { ok: true, value: v };
-    }
-    case 'enum':
-      return spec.values.includes(s) ? { ok: true, value: s } : { ok: false };
-    case 'cell': {
-      const m = /^(\d+)\s*,\s*(\d+)$/.exec(s);
-      if (!m) return { ok: false };
-      const x = Number(m[1]);
-      const y = Number(m[2]);
-      return x >= 1 && y >= 1 && x <= n && y <= n ? { ok: true, value: [x, y] } : { ok: false };
-    }
-    case 'seed': {
-      if (!/^\d{1,20}$/.test(s)) return { ok: false };
-      const v = BigInt(s);
-      return v <= U64_MAX ? { ok: true, value: v } : { ok: false };
-    }
-    case 'speed': {
-      if (s === 'max') return { ok: true, value: 'max' };
-      if (!/^\d+$/.test(s)) return { ok: false };
-      const v = Number(s);
-      return v >= spec.min && v <= spec.max ? { ok: true, value: v } : { ok: false };
-    }
-    case 'bool':
-      if (['1', 'true', 'yes', 'on'].includes(s)) return { ok: true, value: true };
-      if (['0', 'false', 'no', 'off'].includes(s)) return { ok: true, value: false };
-      return { ok: false };
-    case 'paint':
-      return /^[A-Za-z0-9_-]*$/.test(s) && s.length <= 200000 ? { ok: true, value: s } : { ok: false };
-    default:
-      return { ok: false };
-  }
-}
+const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
 /**
- * Parses a query string (with or without the leading "?").
- * @returns {{config: object, messages: string[]}}
+ * Race opponents: every searcher in the registry, and for one that reads
+ * `variant`, each variant. `pairs` are the parameters that make the opponent.
  */
-export function parseParams(search) {
-  const params = new URLSearchParams(search);
-  const config = defaults();
-  const messages = [];
-  const bad = (key, raw, why) => {
-    const spec = SPEC_BY_KEY[key];
-    const def = spec.kind === 'cell' ? spec.def.join(',') : String(spec.def);
-    messages.push(`Invalid ${key}=${JSON.stringify(shown(raw))}${why ? ` (${why})` : ''}: allowed ${allowed(spec)}. Using the default ${key}=${def || '(none)'}.`);
-  };
-  // n first: `start` is checked against it.
-  const order = ['n', ...SPECS.map((s) => s.key).filter((k) => k !== 'n')];
-  for (const key of order) {
-    if (!params.has(key)) continue;
-    const spec = SPEC_BY_KEY[key];
-    const raw = params.getAll(key).at(-1);
-    const r = parseValue(spec, raw, config.n);
-    if (r.ok) config[key] = r.value;
-    else bad(key, raw);
-  }
-  for (const key of new Set(params.keys())) {
-    if (!(key in SPEC_BY_KEY)) messages.push(`Unknown URL parameter ${JSON.stringify(shown(key))} ignored.`);
-  }
-  // Cross-field rules.
-  if (config.prior === 'paint' && !config.paint) {
-    messages.push('prior=paint needs a painted prior (parameter paint); using prior=gaussian.');
-    config.prior = 'gaussian';
-  }
-  return { config, messages };
-}
-
-function fmt(spec, v) {
-  if (spec.kind === 'cell') return `${v[0]},${v[1]}`;
-  if (spec.kind === 'bool') return v ? '1' : '0';
-  if (spec.kind === 'float') return String(+v.toPrecision(12));
-  return String(v);
-}
-
-function equal(a, b) {
-  return Array.isArray(a) ? a[0] === b[0] && a[1] === b[1] : a === b;
-}
-
-/** Serializes a config to a query string without the "?". */
-export function serializeConfig(config, { full = false } = {}) {
-  const params = new URLSearchParams();
-  for (const spec of SPECS) {
-    const v = config[spec.key];
-    if (v === undefined) continue;
-    if (!full && spec.key !== 'seed' && equal(v, spec.def)) continue;
-    // Parameters that do not apply to this config are left out.
-    if (!full && spec.key === 'paint' && config.prior !== 'paint') continue;
-    params.set(spec.key, fmt(spec, v));
-  }
-  return params.toString();
-}
-
-/** A config's human summary, e.g. for the race scoreboard. */
-export function describeSearcher(config) {
-  if (config.searcher !== 'mcts') return config.searcher.toUpperCase();
-  const budget = config.ms > 0 ? `${config.ms} ms` : `L=${config.loops}`;
-  return `MCTS ${config.variant} · ${config.rollout} rollouts · ${budget}`;
-}
-
-// ---- Painted prior: run-length encoding of a weight grid (levels 0–15). ----
-
-const B64 = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_';
-
-/** Encodes Uint8Array levels (0–15) as base64url runs: [level, run-1] pairs, run ≤ 4096. */
-export function encodePaint(levels) {
-  let out = '';
-  let i = 0;
-  while (i < levels.length) {
-    const lv = levels[i] & 15;
-    let run = 1;
-    while (i + run < levels.length && (levels[i + run] & 15) === lv && run < 4096) run++;
-    // 18 bits: 4 bits level + 12 bits (run - 1), padded into three base64 digits.
-    const word = (lv << 12) | (run - 1);
-    out += B64[(word >> 12) & 63] + B64[(word >> 6) & 63] + B64[word & 63];
-    i += run;
+export function raceOptions(engine, schema) {
+  const variant = schema.params.find((p) => p.key === 'variant');
+  const base = engine.parseParams([]).config;
+  const out = [{ id: '', label: '— nobody —', pairs: [] }];
+  for (const s of schema.searchers) {
+    const withS = engine.setParam(base, 'searcher', s.name);
+    if (engine.applicable(withS).includes('variant')) {
+      for (const v of variant.choices) out.push({ id: `${s.name}-${v}`, label: `${s.label} ${v}`, pairs: [['searcher', s.name], ['variant', v]] });
+    } else {
+      out.push({ id: s.name, label: s.label, pairs: [['searcher', s.name]] });
+    }
   }
   return out;
 }
 
-/** Decodes encodePaint output into a Uint8Array of n*n levels, or null if malformed. */
-export function decodePaint(s, n) {
-  if (s.length % 3 !== 0) return null;
-  const levels = new Uint8Array(n * n);
-  let i = 0;
-  for (let k = 0; k < s.length; k += 3) {
-    const d = [0, 1, 2].map((j) => B64.indexOf(s[k + j]));
-    if (d.some((x) => x < 0)) return null;
-    const word = (d[0] << 12) | (d[1] << 6) | d[2];
-    const lv = word >> 12;
-    const run = (word & 4095) + 1;
-    if (lv > 15 || i + run > levels.length) return null;
-    levels.fill(lv, i, i + run);
-    i += run;
+/** The page's own parameters: key → { def, help, parse(text) → value | undefined, text(value) }. */
+export function viewSpecs(races) {
+  return {
+    speed: {
+      def: 10,
+      help: 'loops per frame, an integer in 1..=1000000, or max',
+      parse: (s) => (s === 'max' ? 'max' : /^\d{1,7}$/.test(s) && +s >= 1 && +s <= 1e6 ? +s : undefined),
+      text: String,
+    },
+    autoplay: {
+      def: true,
+      help: 'one of 1, 0, true, false, yes, no, on, off',
+      parse: (s) => BOOL[s],
+      text: (v) => (v ? '1' : '0'),
+    },
+    race: {
+      def: '',
+      help: `one of ${races.filter((r) => r.id).map((r) => r.id).join(', ')}, or empty`,
+      parse: (s) => (races.some((r) => r.id === s) ? s : undefined),
+      text: String,
+    },
+  };
+}
+
+/**
+ * Parses a query string (with or without "?"). Every parameter is checked;
+ * a bad one keeps its default and yields a message naming it and its range.
+ * @returns {{ config: object, view: object, messages: string[] }}
+ */
+export function readUrl(engine, schema, search, races = raceOptions(engine, schema)) {
+  const params = new URLSearchParams(search);
+  const specs = viewSpecs(races);
+  const view = Object.fromEntries(Object.entries(specs).map(([k, s]) => [k, s.def]));
+  const known = new Map(schema.params.map((p) => [p.key, p]));
+  const messages = [];
+  const pairs = [];
+  for (const key of new Set(params.keys())) {
+    const raw = params.getAll(key).at(-1); // a repeated key: the last one counts
+    if (key in specs) {
+      const v = specs[key].parse(raw.trim());
+      if (v === undefined) {
+        messages.push(`Invalid ${key}=${JSON.stringify(shown(raw))}: allowed ${specs[key].help}. Using the default ${key}=${specs[key].text(specs[key].def) || '(none)'}.`);
+      } else view[key] = v;
+    } else if (known.has(key)) pairs.push([key, raw]);
+    else messages.push(`Unknown URL parameter ${JSON.stringify(shown(key))} ignored.`);
   }
-  return i === levels.length ? levels : null;
+  const { config, errors } = engine.parseParams(pairs);
+  for (const e of errors) {
+    const def = known.get(e.field)?.default;
+    messages.push(`Invalid ${e.field}=${JSON.stringify(shown(e.value))}: allowed ${e.allowed}. Using the default ${e.field}=${def || '(none)'}.`);
+  }
+  return { config, view, messages };
+}
+
+/**
+ * The query string (without "?") for a config and view: with `full` every
+ * parameter, else only what differs from the defaults, and the seed (so a
+ * shared link reproduces the run).
+ */
+export function writeUrl(engine, config, view, { full = false, races = [] } = {}) {
+  const params = new URLSearchParams(engine.configParams(config, full));
+  for (const [key, spec] of Object.entries(viewSpecs(races))) {
+    if (view[key] !== undefined && (full || view[key] !== spec.def)) params.set(key, spec.text(view[key]));
+  }
+  return params.toString();
 }

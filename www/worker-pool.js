@@ -26,11 +26,11 @@ export class WorkerPool {
   }
 
   /**
-   * Runs trials 0..trials-1 of `config` (the core's Config object) with `seed`.
+   * Runs trials 0..trials-1 of `config` (the engine's config, seed included).
    * onResult(index, result, doneCount) is called as trials finish.
    * Resolves to the results in trial order (arrays of 7 numbers, see runTrial).
    */
-  run(config, seed, trials, onResult = () => {}) {
+  run(config, trials, onResult = () => {}) {
     this.spawn();
     const id = ++this.job;
     const results = new Array(trials);
@@ -39,7 +39,7 @@ export class WorkerPool {
     return new Promise((resolve, reject) => {
       this.reject = reject;
       const feed = (w) => {
-        if (next < trials) w.postMessage({ id, config, seed: String(seed), indices: [next++] });
+        if (next < trials) w.postMessage({ id, config, indices: [next++] });
       };
       for (const w of this.workers) {
         w.onmessage = (e) => {

@@ -15,8 +15,8 @@
 //! persists across the searcher's moves unless reset each move, as some of
 //! the paper's scripts do.
 
-use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
-use crate::lattice::Move;
+use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
+use crate::lattice::{Move, Torus};
 use crate::searchers::Visit;
 
 /// Per-cell MCTS statistics.
@@ -110,9 +110,11 @@ impl CellTable {
             selected: [0; 4],
         }
     }
+}
 
+impl Stats for CellTable {
     /// Starts a decision; clears the table when `reset`.
-    pub fn begin_decision(&mut self, reset: bool) {
+    fn begin_decision(&mut self, _root: u32, reset: bool) {
         if reset {
             self.visits.fill(0);
             self.reward.fill(0.0);
@@ -120,18 +122,14 @@ impl CellTable {
         self.selected = [0; 4];
     }
 
-    /// Visit counts per cell (the visit-count heatmap).
-    pub fn visits(&self) -> &[u32] {
+    fn advance(&mut self, _m: Move) {}
+
+    fn visits<'a>(&'a self, _cells: usize, _scratch: &'a mut Vec<u32>) -> &'a [u32] {
         &self.visits
     }
 
-    /// Summed rewards per cell.
-    pub fn rewards(&self) -> &[f64] {
-        &self.reward
-    }
-
     /// The decision statistics at `root`.
-    pub fn view(&self, env_torus: &crate::lattice::Torus, root: u32, c: f64) -> DecisionView {
+    fn view(&self, env_torus: &Torus, root: u32, c: f64) -> DecisionView {
         let parent = self.visits[root as usize];
         let children = std::array::from_fn(|i| {
             let cell = env_torus.step(root, Move::ALL[i]);
@@ -146,7 +144,7 @@ impl CellTable {
     }
 
     /// One loop from `root`: select a neighbour, roll out, backpropagate.
-    pub fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
         let view = self.view(env.torus, root, env.c);
         // Unvisited neighbours come first (their UCT is +∞), ties at random.
         let values = view.children.map(|ch| ch.uct);

@@ -7,63 +7,55 @@ pub mod cells;
 pub mod tree;
 
 use crate::lattice::{Move, Torus};
+use crate::named::named_enum;
 use crate::rng::{self, Rng};
-use crate::searchers::{Outcome, Policy, Visit};
+use crate::searchers::{Outcome, Policy, Searcher, SearcherInfo, Setup, Visit, World};
+use crate::view::Layer;
+use cells::CellTable;
+use tree::Tree;
 
-/// Which MCTS variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Variant {
-    /// Per-cell statistics, depth-1 selection (the paper).
-    Cells,
-    /// A search tree of move sequences with subtree reuse.
-    Tree,
-}
-
-impl Variant {
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            Variant::Cells => "cells",
-            Variant::Tree => "tree",
+/// MCTS as a searcher: the variant (`cells` or `tree`) keeps the statistics.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "mcts",
+    label: "MCTS",
+    help: "before each move it runs L loops: a practice target from the belief, UCT selection, a rollout, backpropagation",
+    deliberates: true,
+    uses: |c, key| match key {
+        "variant" | "rollout" | "belief" | "ms" | "c" | "final" | "rollout_cap" | "keep_traces" => {
+            true
         }
-    }
+        "loops" => c.ms.is_none(),
+        "reset_each_move" => c.variant == Variant::Cells,
+        "tree_nodes" => c.variant == Variant::Tree,
+        "mu" => c.rollout == crate::searchers::PolicyKind::Levy,
+        "epsilon" => c.rollout == crate::searchers::PolicyKind::Greedy,
+        _ => false,
+    },
+    build: |s| match s.cfg.variant {
+        Variant::Cells => Box::new(Mcts::new(CellTable::new(s.torus.cells()), s)),
+        Variant::Tree => Box::new(Mcts::new(Tree::new(s.cfg.tree_nodes), s)),
+    },
+};
 
-    /// Parses a lower-case name.
-    pub fn parse(s: &str) -> Option<Variant> {
-        [Variant::Cells, Variant::Tree]
-            .into_iter()
-            .find(|v| v.name() == s)
+named_enum! {
+    /// Which MCTS variant.
+    pub enum Variant {
+        /// Per-cell statistics, depth-1 selection (the paper).
+        Cells = "cells",
+        /// A search tree of move sequences with subtree reuse.
+        Tree = "tree",
     }
 }
 
-/// How the real move is chosen once a decision's loops are done.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum FinalRule {
-    /// The child selected most often in this decision (robust child).
-    Visits,
-    /// The child with the best mean reward.
-    Mean,
-    /// The child with the best UCT value (the paper's Gaussian code).
-    Uct,
-}
-
-impl FinalRule {
-    /// Lower-case name.
-    pub fn name(self) -> &'static str {
-        match self {
-            FinalRule::Visits => "visits",
-            FinalRule::Mean => "mean",
-            FinalRule::Uct => "uct",
-        }
-    }
-
-    /// Parses a lower-case name.
-    pub fn parse(s: &str) -> Option<FinalRule> {
-        [FinalRule::Visits, FinalRule::Mean, FinalRule::Uct]
-            .into_iter()
-            .find(|v| v.name() == s)
+named_enum! {
+    /// How the real move is chosen once a decision's loops are done.
+    pub enum FinalRule {
+        /// The child selected most often in this decision (robust child).
+        Visits = "visits",
+        /// The child with the best mean reward.
+        Mean = "mean",
+        /// The child with the best UCT value (the paper's Gaussian code).
+        Uct = "uct",
     }
 }
 
@@ -160,12 +152,12 @@ pub fn argmax_random(values: [f64; 4], valid: [bool; 4], rng: &mut Rng) -> Optio
     }
 }
 
-/// The final move under `rule` from the children's statistics.
-pub fn final_move(view: &DecisionView, rule: FinalRule, rng: &mut Rng) -> Move {
+/// What `rule` ranks the children by. An unvisited child has no evidence
+/// of its mean: it ranks below every visited one.
+fn final_values(view: &DecisionView, rule: FinalRule) -> [f64; 4] {
     let ch = &view.children;
-    let values: [f64; 4] = std::array::from_fn(|i| match rule {
+    std::array::from_fn(|i| match rule {
         FinalRule::Visits => ch[i].selected as f64,
-        // An unvisited child has no evidence; it ranks below every visited one.
         FinalRule::Mean => {
             if ch[i].visits == 0 {
                 -1.0
@@ -174,8 +166,110 @@ pub fn final_move(view: &DecisionView, rule: FinalRule, rng: &mut Rng) -> Move {
             }
         }
         FinalRule::Uct => ch[i].uct,
-    });
+    })
+}
+
+/// The final move under `rule` from the children's statistics (ties at random).
+pub fn final_move(view: &DecisionView, rule: FinalRule, rng: &mut Rng) -> Move {
+    let values = final_values(view, rule);
     Move::from_index(argmax_random(values, [true; 4], rng).unwrap_or(0) as u32)
+}
+
+/// The moves [`final_move`] would choose among if the decision ended now:
+/// one, or several tied (it then picks one of them at random).
+pub fn leading(view: &DecisionView, rule: FinalRule) -> [bool; 4] {
+    let values = final_values(view, rule);
+    let best = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    values.map(|v| v == best)
+}
+
+/// A variant's statistics: what [`Mcts`] needs from `cells` and `tree`.
+pub trait Stats {
+    /// Starts a decision at `root`; `reset` clears persistent statistics.
+    fn begin_decision(&mut self, root: u32, reset: bool);
+    /// One loop from `root`: select, roll out, backpropagate.
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport;
+    /// The decision statistics at `root`.
+    fn view(&self, torus: &Torus, root: u32, c: f64) -> DecisionView;
+    /// The real move `m` was made (a tree keeps that subtree).
+    fn advance(&mut self, m: Move);
+    /// Visit counts per cell of a lattice of `cells` cells (`scratch` is
+    /// room to project a tree into).
+    fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32];
+}
+
+/// UCT search with a variant's statistics and a rollout policy.
+pub struct Mcts<S: Stats> {
+    stats: S,
+    policy: Policy,
+    c: f64,
+    final_rule: FinalRule,
+    rollout_cap: u32,
+    reset_each_move: bool,
+    cells: usize,
+}
+
+impl<S: Stats> Mcts<S> {
+    /// A searcher with these statistics, configured by `setup`.
+    pub fn new(stats: S, setup: &Setup<'_>) -> Mcts<S> {
+        let cfg = setup.cfg;
+        Mcts {
+            stats,
+            policy: Policy::new(cfg.rollout, setup.torus, cfg.mu, cfg.epsilon),
+            c: cfg.c,
+            final_rule: cfg.final_rule,
+            rollout_cap: cfg.rollout_cap,
+            reset_each_move: cfg.reset_each_move,
+            cells: setup.torus.cells(),
+        }
+    }
+}
+
+impl<S: Stats> Searcher for Mcts<S> {
+    fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
+        if !w.budget.is_open() {
+            w.budget.open();
+            self.stats.begin_decision(w.pos, self.reset_each_move);
+        }
+        let mut done = 0;
+        while done < max_loops && !w.budget.spent() {
+            let practice = w.belief.practice_target(w.rng);
+            w.sensor.arm(practice);
+            let mut env = LoopEnv {
+                torus: w.torus,
+                mask: w.sensor.mask(),
+                practice,
+                policy: &mut self.policy,
+                rng: w.rng,
+                rollout_cap: self.rollout_cap,
+                c: self.c,
+                trace: w.traces.slot(),
+            };
+            let report = self.stats.iterate(&mut env, w.pos);
+            w.traces.commit(practice);
+            w.counters.add(report.rollout_steps, report.detected);
+            w.budget.record(report.rollout_steps, report.detected);
+            done += 1;
+        }
+        if !w.budget.spent() {
+            return None;
+        }
+        let view = self.stats.view(w.torus, w.pos, self.c);
+        let m = final_move(&view, self.final_rule, w.rng);
+        self.stats.advance(m);
+        w.budget.close();
+        Some(m)
+    }
+
+    fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {}
+
+    fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+        (layer == Layer::Visits).then(|| self.stats.visits(self.cells, scratch))
+    }
+
+    fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView> {
+        Some(self.stats.view(torus, pos, self.c))
+    }
 }
 
 /// What one MCTS loop needs besides the variant's own statistics.

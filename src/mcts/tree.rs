@@ -2,7 +2,9 @@
 //! searcher's position, one node expanded per loop, subtree reuse after
 //! each real move, in a bounded arena.
 
-use super::{argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Tee};
+use super::{
+    argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee,
+};
 use crate::lattice::{Move, Torus};
 use crate::rng;
 use crate::searchers::NoVisit;
@@ -45,7 +47,6 @@ pub struct Tree {
     path: Vec<u32>,
     max_nodes: usize,
     selected: [u32; 4],
-    full: bool,
 }
 
 impl Tree {
@@ -58,32 +59,7 @@ impl Tree {
             path: Vec::new(),
             max_nodes: max_nodes.max(MIN_MAX_NODES) as usize,
             selected: [0; 4],
-            full: false,
         }
-    }
-
-    /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
-    pub fn begin_decision(&mut self, root: u32) {
-        if self.nodes.first().map(|n| n.cell) != Some(root) {
-            self.nodes.clear();
-            self.nodes.push(Node::leaf(root));
-        }
-        self.selected = [0; 4];
-    }
-
-    /// Nodes in the arena.
-    pub fn len(&self) -> usize {
-        self.nodes.len()
-    }
-
-    /// True when the arena holds no node.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
-    }
-
-    /// True once the arena cap stopped an expansion.
-    pub fn hit_cap(&self) -> bool {
-        self.full
     }
 
     /// Adds each node's visits to its cell in `out` (after zeroing it).
@@ -91,24 +67,6 @@ impl Tree {
         out.fill(0);
         for n in &self.nodes {
             out[n.cell as usize] = out[n.cell as usize].saturating_add(n.visits);
-        }
-    }
-
-    /// The decision statistics of the root's children.
-    pub fn view(&self, torus: &Torus, root_cell: u32, c: f64) -> DecisionView {
-        let root = self.nodes.first().copied().unwrap_or(Node::leaf(root_cell));
-        let children = std::array::from_fn(|i| {
-            let cell = torus.step(root.cell, Move::ALL[i]);
-            let (v, q) = match root.children[i] {
-                NONE => (0, 0.0),
-                k => (self.nodes[k as usize].visits, self.nodes[k as usize].reward),
-            };
-            ChildStat::new(cell, v, q, root.visits, c, self.selected[i])
-        });
-        DecisionView {
-            parent_visits: root.visits,
-            c,
-            children,
         }
     }
 
@@ -125,12 +83,47 @@ impl Tree {
         }
         argmax_random(values, valid, env.rng)
     }
+}
+
+impl Stats for Tree {
+    /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
+    fn begin_decision(&mut self, root: u32, _reset: bool) {
+        if self.nodes.first().map(|n| n.cell) != Some(root) {
+            self.nodes.clear();
+            self.nodes.push(Node::leaf(root));
+        }
+        self.selected = [0; 4];
+    }
+
+    fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32] {
+        scratch.resize(cells, 0);
+        self.project(scratch);
+        scratch
+    }
+
+    /// The decision statistics of the root's children.
+    fn view(&self, torus: &Torus, root_cell: u32, c: f64) -> DecisionView {
+        let root = self.nodes.first().copied().unwrap_or(Node::leaf(root_cell));
+        let children = std::array::from_fn(|i| {
+            let cell = torus.step(root.cell, Move::ALL[i]);
+            let (v, q) = match root.children[i] {
+                NONE => (0, 0.0),
+                k => (self.nodes[k as usize].visits, self.nodes[k as usize].reward),
+            };
+            ChildStat::new(cell, v, q, root.visits, c, self.selected[i])
+        });
+        DecisionView {
+            parent_visits: root.visits,
+            c,
+            children,
+        }
+    }
 
     /// One loop: descend by UCT, expand one node, roll out, backpropagate.
     ///
     /// # Panics
-    /// If called before [`Tree::begin_decision`].
-    pub fn iterate(&mut self, env: &mut LoopEnv<'_>) -> LoopReport {
+    /// If called before [`Stats::begin_decision`].
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, _root: u32) -> LoopReport {
         self.path.clear();
         self.path.push(0);
         if let Some(t) = env.trace.as_deref_mut() {
@@ -162,9 +155,6 @@ impl Tree {
                 }
                 Some((id, true))
             } else {
-                if k > 0 {
-                    self.full = true;
-                }
                 match self.select_child(node, env) {
                     Some(i) => {
                         if depth == 0 {
@@ -225,7 +215,7 @@ impl Tree {
     }
 
     /// Re-roots the tree at the child reached by `m`, keeping its subtree.
-    pub fn advance(&mut self, m: Move) {
+    fn advance(&mut self, m: Move) {
         let Some(root) = self.nodes.first() else {
             return;
         };
@@ -251,6 +241,5 @@ impl Tree {
             }
         }
         std::mem::swap(&mut self.nodes, &mut self.scratch);
-        self.full = false;
     }
 }

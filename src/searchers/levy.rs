@@ -1,8 +1,19 @@
 //! The Lévy flight: a uniform direction and a power-law length, walked as
 //! unit lattice moves along the straight line to the flight's end point.
 
+use super::{Policy, SearcherInfo, Walker};
 use crate::lattice::Move;
 use crate::rng::{self, Rng};
+
+/// The Lévy flight as a searcher.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "levy",
+    label: "Lévy flight",
+    help: "it flies a power-law distributed length (exponent mu) in a uniformly random direction, walked as unit moves",
+    deliberates: false,
+    uses: |_, key| key == "mu",
+    build: |s| Box::new(Walker::new(Policy::Levy(Levy::new(s.cfg.mu, s.torus.n())), s.start)),
+};
 
 /// Draws a flight length from P(l) ∝ l^−μ on `[1, cap]` (inverse CDF of
 /// the truncated Pareto law).
@@ -88,10 +99,5 @@ impl Levy {
         };
         self.flight = Some(f);
         m
-    }
-
-    /// Unit moves left in the current flight.
-    pub fn remaining(&self) -> u32 {
-        self.flight.map_or(0, |f| f.ax + f.ay - f.done_x - f.done_y)
     }
 }

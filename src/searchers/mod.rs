@@ -1,197 +1,285 @@
-//! Walk policies. Each works standalone (one real move per call) and as an
-//! MCTS rollout (default) policy.
+//! Searchers: who decides each real move, behind one [`Searcher`] trait,
+//! and the registry that names them.
+//!
+//! Each searcher lives in one file with its [`SearcherInfo`]; [`REGISTRY`]
+//! lists them. Adding a searcher is that file plus one line in the
+//! registry: the configuration's `searcher` choices, the CLI, the page's
+//! controls and its frames all follow from the registry.
+//!
+//! The walks here (random walk, Lévy flight, NSARW, greedy) are also the
+//! MCTS rollout policies ([`Policy`]).
 
 mod greedy;
 mod levy;
 mod nsarw;
+mod policy;
 mod random_walk;
 
 pub use greedy::Greedy;
 pub use levy::{flight_length, Levy};
 pub use nsarw::Nsarw;
+pub use policy::{NoVisit, Outcome, Policy, PolicyKind, Visit};
 pub use random_walk::RandomWalk;
 
-use crate::lattice::{Move, Torus};
+use crate::belief::BeliefState;
+use crate::budget::Budget;
+use crate::config::Config;
+use crate::episode::Counters;
+use crate::lattice::{Move, Sensor, Torus};
+use crate::mcts::DecisionView;
 use crate::rng::Rng;
+use crate::traces::Traces;
+use crate::view::Layer;
+use std::fmt;
 
-/// How a rollout ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Outcome {
-    /// Unit moves made.
-    pub steps: u32,
-    /// False when the step cap cut the rollout short.
-    pub detected: bool,
+/// What a searcher works with while it decides: the trial's lattice,
+/// sensor, belief and random stream, the decision's budget, and where its
+/// loops are recorded.
+pub struct World<'a> {
+    /// The lattice.
+    pub torus: &'a Torus,
+    /// The detection sensor (MCTS arms it with practice targets).
+    pub sensor: &'a mut Sensor,
+    /// What is known about the target.
+    pub belief: &'a mut BeliefState,
+    /// The searcher's random stream.
+    pub rng: &'a mut Rng,
+    /// The searcher's cell.
+    pub pos: u32,
+    /// The decision's budget.
+    pub budget: &'a mut Budget,
+    /// Recent rollout traces, for drawing.
+    pub traces: &'a mut Traces,
+    /// The episode's rollout counters.
+    pub counters: &'a mut Counters,
 }
 
-/// Receives every cell a rollout enters, in order.
-pub trait Visit {
-    /// Called once per unit move with the cell entered and the move's
-    /// number `step` (1 for the first move of the rollout).
-    fn visit(&mut self, cell: u32, step: u32);
+/// Who decides each real move.
+pub trait Searcher {
+    /// Works on the decision under way for at most `max_loops` loops
+    /// (`max_loops` ≥ 1) and returns the move once it is decided. A searcher
+    /// that does not deliberate decides at once.
+    fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move>;
+
+    /// Learns that the real move `m` took the searcher to `pos`.
+    fn observe(&mut self, torus: &Torus, m: Move, pos: u32);
+
+    /// The per-cell counts drawn as heat layer `layer`, if this searcher
+    /// has them (`scratch` is room for counts it must assemble).
+    fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]>;
+
+    /// The decision under way at `pos`, for a searcher that deliberates.
+    fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView>;
 }
 
-/// A visitor that records nothing (the fastest rollout).
-pub struct NoVisit;
-
-impl Visit for NoVisit {
-    #[inline(always)]
-    fn visit(&mut self, _: u32, _: u32) {}
+/// What a searcher is built from.
+pub struct Setup<'a> {
+    /// The configuration.
+    pub cfg: &'a Config,
+    /// The lattice.
+    pub torus: &'a Torus,
+    /// The start cell.
+    pub start: u32,
 }
 
-impl Visit for Vec<u32> {
-    #[inline]
-    fn visit(&mut self, cell: u32, _: u32) {
-        self.push(cell);
+/// A registry entry: a searcher's name, what it reads and how to build it.
+pub struct SearcherInfo {
+    /// The `searcher` value that selects it.
+    pub name: &'static str,
+    /// A short name for people.
+    pub label: &'static str,
+    /// How it moves, in one sentence.
+    pub help: &'static str,
+    /// True when it runs MCTS loops before each move.
+    pub deliberates: bool,
+    /// True when it reads configuration parameter `key` under `cfg`.
+    pub uses: fn(&Config, &str) -> bool,
+    /// Builds it for a trial.
+    pub build: fn(&Setup<'_>) -> Box<dyn Searcher>,
+}
+
+/// Every searcher, in the order the CLI and the page list them.
+pub static REGISTRY: &[&SearcherInfo] = &[
+    &crate::mcts::INFO,
+    &random_walk::INFO,
+    &levy::INFO,
+    &nsarw::INFO,
+    #[cfg(test)]
+    &tests::STAND_STILL,
+];
+
+/// The names of the registered searchers.
+pub fn names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|s| s.name).collect()
+}
+
+/// A registered searcher, by name.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SearcherId(&'static str);
+
+impl SearcherId {
+    /// The registered searcher called `name`.
+    pub fn parse(name: &str) -> Option<SearcherId> {
+        REGISTRY
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| SearcherId(s.name))
     }
-}
 
-/// The name of a walk policy.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum PolicyKind {
-    /// Uniform random walk.
-    Rw,
-    /// Lévy flight walked as unit moves.
-    Levy,
-    /// Nearly self-avoiding random walk.
-    Nsarw,
-    /// Shortest path toward the (practice) target, random with probability ε.
-    Greedy,
-}
-
-impl PolicyKind {
-    /// All kinds, for help texts.
-    pub const ALL: [PolicyKind; 4] = [
-        PolicyKind::Rw,
-        PolicyKind::Levy,
-        PolicyKind::Nsarw,
-        PolicyKind::Greedy,
-    ];
-
-    /// Lower-case name.
+    /// Its name.
     pub fn name(self) -> &'static str {
-        match self {
-            PolicyKind::Rw => "rw",
-            PolicyKind::Levy => "levy",
-            PolicyKind::Nsarw => "nsarw",
-            PolicyKind::Greedy => "greedy",
-        }
+        self.0
     }
 
-    /// Parses a lower-case name.
-    pub fn parse(s: &str) -> Option<PolicyKind> {
-        PolicyKind::ALL.into_iter().find(|k| k.name() == s)
+    /// Its registry entry.
+    pub fn info(self) -> &'static SearcherInfo {
+        // An id is only made from a registry name.
+        REGISTRY
+            .iter()
+            .find(|s| s.name == self.0)
+            .copied()
+            .unwrap_or(REGISTRY[0])
     }
 }
 
-/// A walk policy with its state.
-#[derive(Clone, Debug)]
-pub enum Policy {
-    Rw(RandomWalk),
-    Levy(Levy),
-    Nsarw(Nsarw),
-    Greedy(Greedy),
+impl fmt::Debug for SearcherId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "SearcherId({})", self.0)
+    }
 }
 
-impl Policy {
-    /// Builds the policy `kind` for lattice `torus`.
-    ///
-    /// `mu` is the Lévy exponent and `epsilon` the greedy noise; both are
-    /// validated by the caller's config.
-    pub fn new(kind: PolicyKind, torus: &Torus, mu: f64, epsilon: f64) -> Policy {
-        match kind {
-            PolicyKind::Rw => Policy::Rw(RandomWalk),
-            PolicyKind::Levy => Policy::Levy(Levy::new(mu, torus.n())),
-            PolicyKind::Nsarw => Policy::Nsarw(Nsarw::new(torus.cells())),
-            PolicyKind::Greedy => Policy::Greedy(Greedy::new(epsilon)),
-        }
+impl fmt::Display for SearcherId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
+impl serde::Serialize for SearcherId {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.0)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for SearcherId {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<SearcherId, D::Error> {
+        let s = String::deserialize(d)?;
+        SearcherId::parse(&s).ok_or_else(|| {
+            serde::de::Error::custom(format!("expected one of {}, got {s:?}", names().join(", ")))
+        })
+    }
+}
+
+/// A walk used as a searcher: one real move per decision, no deliberation.
+pub struct Walker {
+    policy: Policy,
+}
+
+impl Walker {
+    /// A walker that starts at `start`.
+    pub fn new(mut policy: Policy, start: u32) -> Walker {
+        // A walk never sees the target: the second argument only steers a
+        // greedy walk, which is not a standalone searcher.
+        policy.begin(start, start);
+        Walker { policy }
+    }
+}
+
+impl Searcher for Walker {
+    fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
+        Some(self.policy.next_move(w.torus, w.rng, w.pos))
     }
 
-    /// Which policy this is.
-    pub fn kind(&self) -> PolicyKind {
-        match self {
-            Policy::Rw(_) => PolicyKind::Rw,
-            Policy::Levy(_) => PolicyKind::Levy,
-            Policy::Nsarw(_) => PolicyKind::Nsarw,
-            Policy::Greedy(_) => PolicyKind::Greedy,
-        }
+    fn observe(&mut self, _torus: &Torus, _m: Move, pos: u32) {
+        self.policy.observe(pos);
     }
 
-    /// Forgets the walk's memory and starts afresh at `start`; `target` is
-    /// what a greedy walk heads for.
-    pub fn begin(&mut self, start: u32, target: u32) {
-        match self {
-            Policy::Rw(_) => {}
-            Policy::Levy(l) => l.begin(),
-            Policy::Nsarw(w) => w.begin(start),
-            Policy::Greedy(g) => g.begin(target),
-        }
-    }
-
-    /// One unit move from `cell`.
-    pub fn next_move(&mut self, torus: &Torus, rng: &mut Rng, cell: u32) -> Move {
-        match self {
-            Policy::Rw(w) => w.next_move(rng),
-            Policy::Levy(l) => l.next_move(rng),
-            Policy::Nsarw(w) => w.next_move(torus, rng, cell),
-            Policy::Greedy(g) => g.next_move(torus, rng, cell),
-        }
-    }
-
-    /// Applies [`Policy::next_move`] and returns the new cell, updating memory.
-    pub fn advance(&mut self, torus: &Torus, rng: &mut Rng, cell: u32) -> u32 {
-        let m = self.next_move(torus, rng, cell);
-        let next = torus.step(cell, m);
-        if let Policy::Nsarw(w) = self {
-            w.enter(next);
-        }
-        next
-    }
-
-    /// Walks from `start` until `mask[cell] != 0` or `cap` moves, after
-    /// [`Policy::begin`]. Every entered cell goes to `visit`.
-    pub fn rollout<V: Visit>(
-        &mut self,
-        torus: &Torus,
-        mask: &[u8],
-        rng: &mut Rng,
-        start: u32,
-        cap: u32,
-        visit: &mut V,
-    ) -> Outcome {
-        match self {
-            Policy::Rw(w) => w.rollout(torus, mask, rng, start, cap, visit),
-            _ => {
-                if mask[start as usize] != 0 {
-                    return Outcome {
-                        steps: 0,
-                        detected: true,
-                    };
-                }
-                let mut cell = start;
-                for steps in 1..=cap {
-                    cell = self.advance(torus, rng, cell);
-                    visit.visit(cell, steps);
-                    if mask[cell as usize] != 0 {
-                        return Outcome {
-                            steps,
-                            detected: true,
-                        };
-                    }
-                }
-                Outcome {
-                    steps: cap,
-                    detected: false,
-                }
-            }
-        }
-    }
-
-    /// The walk's own per-cell visit counts (NSARW only).
-    pub fn counts(&self) -> Option<&[u32]> {
-        match self {
-            Policy::Nsarw(w) => Some(w.counts()),
+    fn counts<'a>(&'a self, layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+        match layer {
+            Layer::Visits | Layer::Walker => self.policy.counts(),
             _ => None,
         }
+    }
+
+    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The registry's promise: a searcher is one file plus one registry
+    //! line. `STAND_STILL` below stands for such a file (registered only in
+    //! tests); everything else about it must follow from the registry.
+    use super::*;
+    use crate::episode::{Episode, Status};
+    use crate::view::{FrameBuilder, FrameRequest};
+
+    /// Shuttles up and down: the simplest searcher that is not a walk.
+    struct StandStill {
+        up: bool,
+    }
+
+    impl Searcher for StandStill {
+        fn think(&mut self, _w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
+            self.up = !self.up;
+            Some(if self.up { Move::Up } else { Move::Down })
+        }
+        fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {}
+        fn counts<'a>(&'a self, _l: Layer, _s: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+            None
+        }
+        fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
+            None
+        }
+    }
+
+    pub static STAND_STILL: SearcherInfo = SearcherInfo {
+        name: "test-shuttle",
+        label: "Shuttle (test)",
+        help: "steps up, then down, for ever",
+        deliberates: false,
+        uses: |_, _| false,
+        build: |_| Box::new(StandStill { up: false }),
+    };
+
+    #[test]
+    fn a_registered_searcher_reaches_every_surface() {
+        // The configuration accepts its name, from text and from JSON.
+        let mut cfg = Config::default();
+        cfg.set("searcher", "test-shuttle").unwrap();
+        cfg.set("step_cap", "7").unwrap();
+        cfg.validate().unwrap();
+        let json = serde_json::to_string(&cfg).unwrap();
+        assert_eq!(serde_json::from_str::<Config>(&json).unwrap(), cfg);
+        // The schema lists it, and parameters it does not read do not apply.
+        let schema = crate::config::schema();
+        assert!(schema.searchers.iter().any(|s| s.name == "test-shuttle"));
+        let searcher = schema.params.iter().find(|p| p.key == "searcher").unwrap();
+        assert!(searcher.choices.as_ref().unwrap().contains(&"test-shuttle"));
+        assert!(!cfg.applicable().contains(&"loops"));
+        assert_eq!(cfg.label(), "Shuttle (test)");
+        // An episode runs it to the step cap, and frames show it.
+        let mut ep = Episode::new(&cfg).unwrap();
+        let r = ep.run();
+        assert_eq!(ep.status(), Status::Capped);
+        assert_eq!(r.steps, 7);
+        let path = ep.path();
+        assert_eq!(path[2], path[0], "up then down returns");
+        let mut fb = FrameBuilder::new(ep.torus().cells());
+        let frame = fb.frame(&ep, &FrameRequest::default(), 0.0);
+        assert!(frame.decision.is_none());
+        assert_eq!(frame.steps, 7);
+        // Batches and fingerprints take it like any other.
+        assert_eq!(crate::batch::run_trials(&cfg, 0, 2).unwrap().len(), 2);
+    }
+
+    #[test]
+    fn registry_names_are_unique_and_parse() {
+        let names = names();
+        for (i, n) in names.iter().enumerate() {
+            assert!(!names[..i].contains(n), "{n} registered twice");
+            assert_eq!(SearcherId::parse(n).unwrap().info().name, *n);
+        }
+        assert!(SearcherId::parse("astar").is_none());
     }
 }

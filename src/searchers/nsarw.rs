@@ -1,8 +1,24 @@
 //! The nearly self-avoiding random walk (NSARW): each step chooses uniformly
 //! among the neighbours visited the fewest times so far.
 
+use super::{Policy, SearcherInfo, Walker};
 use crate::lattice::{Move, Torus};
 use crate::rng::{self, Rng};
+
+/// NSARW as a searcher.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "nsarw",
+    label: "NSARW",
+    help: "each step goes to a least-visited neighbour, ties broken at random",
+    deliberates: false,
+    uses: |_, _| false,
+    build: |s| {
+        Box::new(Walker::new(
+            Policy::Nsarw(Nsarw::new(s.torus.cells())),
+            s.start,
+        ))
+    },
+};
 
 /// NSARW with its own visit counts.
 ///
@@ -78,10 +94,5 @@ impl Nsarw {
     /// this walk may hold counts of earlier walks unless only one walk ran).
     pub fn counts(&self) -> &[u32] {
         &self.count
-    }
-
-    /// Visits of `cell` in the current walk.
-    pub fn visits(&self, cell: u32) -> u32 {
-        self.get(cell)
     }
 }

@@ -1,8 +1,18 @@
 //! The simple random walk: each step is one of the four moves, uniformly.
 
-use super::{Outcome, Visit};
+use super::{Outcome, Policy, SearcherInfo, Visit, Walker};
 use crate::lattice::{Move, Torus};
 use crate::rng::{self, Rng};
+
+/// The random walk as a searcher.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "rw",
+    label: "Random walk",
+    help: "each step is one of the four moves, uniformly at random",
+    deliberates: false,
+    uses: |_, _| false,
+    build: |s| Box::new(Walker::new(Policy::Rw(RandomWalk), s.start)),
+};
 
 /// Uniform random walk (no state).
 #[derive(Clone, Copy, Debug, Default)]

@@ -5,6 +5,12 @@
 #![allow(dead_code)]
 
 use std::collections::VecDeque;
+use torus_search::searchers::SearcherId;
+
+/// The registered searcher called `name`.
+pub fn searcher(name: &str) -> SearcherId {
+    SearcherId::parse(name).unwrap_or_else(|| panic!("no searcher {name:?}"))
+}
 
 /// Upper quantile of the standard normal for tail probability 1e-4.
 pub const Z_1E4: f64 = 3.719_016_485_455_68;

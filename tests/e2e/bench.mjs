@@ -13,12 +13,14 @@
 //                         N=100 episode once its path has 9000 moves
 //   native_*              with --native: `target/release/torus-search bench --json`
 //                         (the suite), and the very loops the page ran, timed
-//                         natively (`bench --episode CONFIG --loops FROM..TO`);
+//                         natively (`bench --episode CONFIG --loops FROM..TO`,
+//                         CONFIG the run's engine config, seed included);
 //                         page_over_native_* divides the two
 // Each page figure is the median of --repeat measurements (default 3), and
 // every ratio is taken within one measurement (its own loop window) first.
 // Usage: node tests/e2e/bench.mjs [--native] [--seconds S] [--repeat R]
-// Needs `make build` (www/pkg) first.
+// Needs `make build` (www/pkg) first. It reads and drives the page through
+// its test interface, `window.torusTest` (www/test-hook.js).
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -52,17 +54,17 @@ const PROBE = () => {
 
 /** Waits for the page's runs, unticks the layers `untick`, and plays at full speed. */
 async function playAtFullSpeed(page, untick) {
-  await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
+  await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
   await page.evaluate(async (ids) => {
     for (const id of ids) {
       const el = document.getElementById(id);
       if (el.checked) el.click();
     }
-    const c = window.torusPage.controller;
+    const t = window.torusTest;
     // Unticking a trace layer restarts the run (traces are kept from the start).
-    await c.whenReady();
-    c.setSpeed('max');
-    c.play();
+    await t.ready();
+    t.dispatch({ type: 'speed', speed: 'max' });
+    t.dispatch({ type: 'play' });
   }, untick);
 }
 
@@ -72,15 +74,15 @@ async function measurePage(context, url, { untick = [] } = {}) {
     await playAtFullSpeed(page, untick);
     await page.waitForTimeout(1000); // warm up
     const sample = () => page.evaluate(() => {
-      const c = window.torusPage.controller;
+      const t = window.torusTest;
+      const runs = t.runs();
       return {
         t: performance.now(),
         frames: window.__bench.frames,
-        loops: c.runs.reduce((a, r) => a + r.loopsDone(), 0),
-        core: c.runs[0].core,
-        seed: c.runs[0].seed,
-        steps: c.runs.reduce((a, r) => a + r.rolloutSteps(), 0),
-        state: c.state,
+        loops: runs.reduce((a, r) => a + r.work, 0),
+        config: runs[0].config,
+        steps: runs.reduce((a, r) => a + r.rolloutSteps, 0),
+        state: t.state(),
         longest: window.__bench.longest,
         longTasks: window.__bench.longTasks,
       };
@@ -111,8 +113,7 @@ async function measurePage(context, url, { untick = [] } = {}) {
       long_tasks: b.longTasks,
       state_at_end: b.state,
       window: [a.loops, b.loops],
-      core: a.core,
-      seed: a.seed,
+      config: a.config,
     };
   } finally {
     await page.close();
@@ -128,15 +129,15 @@ async function measureLongPath(context, url, moves) {
   try {
     await playAtFullSpeed(page, ['layer-rollouts', 'layer-practice']);
     await page.waitForFunction(
-      (m) => window.torusPage.controller.runs[0].pathLen >= m || window.torusPage.controller.state !== 'running',
+      (m) => window.torusTest.runs()[0].pathLen >= m || window.torusTest.state() !== 'running',
       moves,
       { timeout: 180_000, polling: 250 },
     );
     const probe = () => page.evaluate(() => ({
       t: performance.now(),
       frames: window.__bench.frames,
-      moves: window.torusPage.controller.runs[0].pathLen - 1,
-      state: window.torusPage.controller.state,
+      moves: window.torusTest.runs()[0].pathLen - 1,
+      state: window.torusTest.state(),
       longest: window.__bench.longest,
     }));
     await page.evaluate(() => {
@@ -160,10 +161,14 @@ async function measureLongPath(context, url, moves) {
 async function measureWindow(context, url, m) {
   const { page } = await openPage(context, url);
   try {
-    await page.waitForFunction(() => window.torusPage?.controller?.runs?.length, null, { timeout: 60_000 });
-    return await page.evaluate(async ({ core, seed, window: [a, b] }) => {
-      const s = window.torusPage.session;
-      const run = (loops) => s.request('benchLoops', { config: core, seed, loops });
+    await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
+    return await page.evaluate(async ({ config, window: [a, b] }) => {
+      const t = window.torusTest;
+      const run = async (loops) => {
+        const answer = await t.request('benchLoops', { config, loops });
+        if (!answer) throw new Error(`benchLoops failed: ${document.getElementById('message').textContent}`);
+        return answer;
+      };
       await run(Math.min(a, 5000)); // warm up
       const ta = (await run(a)).ms;
       const tb = (await run(b)).ms;
@@ -177,23 +182,25 @@ async function measureWindow(context, url, m) {
 async function measureWasm(context, url) {
   const { page } = await openPage(context, url);
   try {
-    await page.waitForFunction(() => window.torusPage?.wasm, null, { timeout: 60_000 });
+    await page.waitForFunction(() => window.torusTest?.engine, null, { timeout: 60_000 });
     return await page.evaluate(() => {
-      const w = window.torusPage.wasm;
-      window.torusPage.controller.pause();
+      const w = window.torusTest.engine;
+      window.torusTest.dispatch({ type: 'pause' });
       const time = (fn) => {
         fn(); // warm up
         const t0 = performance.now();
         const r = fn();
         return [r, (performance.now() - t0) / 1000];
       };
-      const [steps, ts] = time(() => w.benchRolloutSteps('rw', 40, 1, 2, 1n, 2e8));
-      const cfg = { n: 40, prior: { kind: 'gaussian', sigma: 5 }, loops: 100 };
-      const [loops, tl] = time(() => w.benchMctsLoops(cfg, 1n, 20000)[0]);
-      const cfg0 = { n: 40, prior: { kind: 'delta', cell: null }, loops: 100 };
-      const [loops0, tl0] = time(() => w.benchMctsLoops(cfg0, 1n, 20000)[0]);
-      const cfg100 = { n: 100, prior: { kind: 'gaussian', sigma: 15 }, loops: 100 };
-      const [loops100, tl100] = time(() => w.benchMctsLoops(cfg100, 1n, 5000)[0]);
+      // The seed as decimal text, as in a config (the binding turns it into a u64).
+      const [steps, ts] = time(() => w.benchRolloutSteps('rw', 40, 1, 2, '1', 2e8));
+      // Flat engine configs (fields left out take their defaults); the seed is part of each.
+      const cfg = { n: 40, prior: 'gaussian', sigma: 5, loops: 100, seed: '1' };
+      const [loops, tl] = time(() => w.benchMctsLoops(cfg, 20000)[0]);
+      const cfg0 = { n: 40, prior: 'delta', loops: 100, seed: '1' };
+      const [loops0, tl0] = time(() => w.benchMctsLoops(cfg0, 20000)[0]);
+      const cfg100 = { n: 100, prior: 'gaussian', sigma: 15, loops: 100, seed: '1' };
+      const [loops100, tl100] = time(() => w.benchMctsLoops(cfg100, 5000)[0]);
       return {
         wasm_rw_steps_per_s: Math.round(steps / ts),
         wasm_loops_per_s_n40_sigma5: Math.round(loops / tl),
@@ -222,9 +229,10 @@ function native() {
 function nativeWindow(m) {
   if (!existsSync(BIN)) return null;
   const dir = mkdtempSync(path.join(tmpdir(), 'torus-bench-'));
-  const file = path.join(dir, 'core.json');
-  writeFileSync(file, JSON.stringify(m.core));
-  const args = ['bench', '--json', '--episode', file, '--loops', `${m.window[0]}..${m.window[1]}`, '--seed', m.seed];
+  const file = path.join(dir, 'config.json');
+  // The run's engine config, its seed included.
+  writeFileSync(file, JSON.stringify(m.config));
+  const args = ['bench', '--json', '--episode', file, '--loops', `${m.window[0]}..${m.window[1]}`];
   return JSON.parse(execFileSync(BIN, args, { encoding: 'utf8', timeout: 600_000 })).loops_per_s;
 }
 

@@ -1,14 +1,25 @@
-// Unit tests of the page's pure modules, run in Node (no browser):
-// URL state parsing/serialisation, painted-prior encoding, wrap-aware path
+// Unit tests of the page's pure modules, run in Node (no browser; the
+// engine runs in Node too): URL state, race options, wrap-aware path
 // segments and the controller's state machine.
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import path from 'node:path';
 import { test } from 'node:test';
-import { parseParams, serializeConfig, defaults, encodePaint, decodePaint, SPECS } from '../../www/url-state.js';
+import { fileURLToPath } from 'node:url';
+import { readUrl, writeUrl, raceOptions } from '../../www/url-state.js';
 import { wrapSegments } from '../../www/renderer.js';
 import { Controller } from '../../www/controller.js';
 
+const PKG = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www/pkg');
+const engine = await import(path.join(PKG, 'torus_search.js'));
+engine.initSync({ module: readFileSync(path.join(PKG, 'torus_search_bg.wasm')) });
+const schema = engine.schema();
+const races = raceOptions(engine, schema);
+const read = (q) => readUrl(engine, schema, q, races);
+const write = (config, view, opts = {}) => writeUrl(engine, config, view, { races, ...opts });
+
 test('no parameters give the default demo', () => {
-  const { config, messages } = parseParams('');
+  const { config, view, messages } = read('');
   assert.deepEqual(messages, []);
   assert.equal(config.n, 40);
   assert.equal(config.prior, 'gaussian');
@@ -16,67 +27,83 @@ test('no parameters give the default demo', () => {
   assert.equal(config.searcher, 'mcts');
   assert.equal(config.variant, 'cells');
   assert.equal(config.rollout, 'rw');
+  assert.equal(config.belief, 'posterior');
   assert.equal(config.loops, 100);
-  assert.equal(config.autoplay, true);
   assert.equal(config.c, Math.SQRT2);
+  assert.equal(config.seed, '1');
+  assert.deepEqual(view, { speed: 10, autoplay: true, race: '' });
 });
 
 test('every parameter round-trips through the URL', () => {
-  const cfg = {
-    ...defaults(),
-    n: 77, prior: 'uniform', sigma: 2.5, rv: 0, start: [3, 70], searcher: 'levy', variant: 'tree',
-    rollout: 'greedy', belief: 'posterior', loops: 250, ms: 12.5, c: 2, mu: 1.5, final: 'uct',
-    seed: 18446744073709551615n, speed: 'max', autoplay: false, race: 'nsarw',
-  };
-  const q = serializeConfig(cfg);
-  const { config, messages } = parseParams(q);
-  assert.deepEqual(messages, []);
-  assert.deepEqual(config, { ...cfg, paint: '' });
-  // Defaults are left out, except the seed.
-  assert.equal(serializeConfig(defaults()), 'seed=1');
-  // The full form names every required parameter.
-  const full = new URLSearchParams(serializeConfig(defaults(), { full: true }));
-  for (const key of ['n', 'prior', 'sigma', 'rv', 'start', 'searcher', 'variant', 'rollout', 'belief', 'loops', 'ms', 'c', 'mu', 'final', 'seed', 'speed', 'autoplay']) {
-    assert.ok(full.has(key), key);
-  }
+  const pairs = [
+    ['n', '77'], ['prior', 'uniform'], ['rv', '0'], ['start', '3,70'], ['searcher', 'levy'], ['mu', '1.5'],
+    ['step_cap', '5000'], ['seed', '18446744073709551615'], ['target', '5,6'],
+  ];
+  const { config, errors } = engine.parseParams(pairs);
+  assert.deepEqual(errors, []);
+  const view = { speed: 'max', autoplay: false, race: 'nsarw' };
+  const back = read(write(config, view));
+  assert.deepEqual(back.messages, []);
+  assert.deepEqual(back.config, config);
+  assert.deepEqual(back.view, view);
+  // MCTS parameters survive too.
+  const mcts = engine.parseParams([['variant', 'tree'], ['rollout', 'greedy'], ['epsilon', '0.3'], ['loops', '250'], ['ms', '12.5'], ['c', '2'], ['final', 'uct'], ['belief', 'prior'], ['tree_nodes', '4096']]).config;
+  assert.deepEqual(read(write(mcts, { speed: 10, autoplay: true, race: '' })).config, mcts);
+  // Defaults are left out, except the seed; the full form names every parameter.
+  assert.equal(write(read('').config, read('').view), 'seed=1');
+  const full = new URLSearchParams(write(config, view, { full: true }));
+  for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'race']) assert.ok(full.has(p), p);
+  assert.deepEqual(read(full.toString()).config, config);
 });
 
 test('invalid values name the parameter and the allowed range, and the default is used', () => {
   const bad = {
     n: '2', prior: 'cauchy', sigma: '-1', rv: 'NaN', start: '0,5', searcher: 'astar', variant: 'forest',
     rollout: 'bfs', belief: 'maybe', loops: '0', ms: '-5', c: 'inf', mu: '1', final: 'best',
-    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me',
+    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me', step_cap: '0', paint: '*',
   };
-  const { config, messages } = parseParams(new URLSearchParams(bad).toString());
-  const d = defaults();
+  const { config, view, messages } = read(new URLSearchParams(bad).toString());
+  const d = read('');
   for (const key of Object.keys(bad)) {
     const msg = messages.find((m) => m.startsWith(`Invalid ${key}=`));
     assert.ok(msg, `no message for ${key}: ${messages.join(' | ')}`);
-    assert.match(msg, /allowed/);
-    assert.deepEqual(config[key], d[key], key);
+    assert.match(msg, /allowed .*Using the default/);
+    if (key in d.view) assert.deepEqual(view[key], d.view[key], key);
+    else assert.deepEqual(config[key], d.config[key], key);
   }
-  assert.match(messages.find((m) => m.startsWith('Invalid n=')), /3–1024/);
+  assert.match(messages.find((m) => m.startsWith('Invalid n=')), /an integer in 3\.\.=1024/);
   assert.match(messages.find((m) => m.startsWith('Invalid mu=')), /\(1, 3\]/);
-  // start is checked against n.
-  assert.equal(parseParams('n=10&start=11,1').messages.length, 1);
-  assert.deepEqual(parseParams('n=10&start=10,10').config.start, [10, 10]);
-  assert.match(parseParams('bogus=1').messages[0], /Unknown URL parameter "bogus"/);
+  // start is checked against n, and a seed beyond 2^64 − 1 is refused, never wrapped.
+  assert.equal(read('n=10&start=11,1').messages.length, 1);
+  assert.deepEqual(read('n=10&start=10,10').config.start, [10, 10]);
+  assert.match(read('seed=18446744073709551616').messages[0], /Invalid seed=.*0\.\.=18446744073709551615/);
+  assert.match(read('bogus=1').messages[0], /Unknown URL parameter "bogus"/);
+  // A repeated key: the last one counts.
+  assert.equal(read('n=12&n=13').config.n, 13);
 });
 
 test('a painted prior survives the URL', () => {
   const n = 37;
   const levels = new Uint8Array(n * n);
   for (let i = 0; i < levels.length; i++) levels[i] = (i * 7919) % 97 < 20 ? (i % 15) + 1 : 0;
-  const s = encodePaint(levels);
+  const s = engine.encodePaint(levels);
   assert.match(s, /^[A-Za-z0-9_-]+$/);
-  assert.deepEqual(decodePaint(s, n), levels);
-  assert.equal(decodePaint(s, n + 1), null);
-  assert.equal(decodePaint(`${s}A`, n), null);
-  const big = new Uint8Array(1024 * 1024);
-  assert.deepEqual(decodePaint(encodePaint(big), 1024), big);
-  const { config } = parseParams(`prior=paint&n=${n}&paint=${s}`);
+  assert.deepEqual(engine.decodePaint(s, n), levels);
+  const { config, messages } = read(`prior=paint&n=${n}&paint=${s}`);
+  assert.deepEqual(messages, []);
   assert.equal(config.prior, 'paint');
   assert.equal(config.paint, s);
+  assert.deepEqual(read(write(config, read('').view)).config, config);
+  // prior=paint without a painting falls back to the default prior, with a message.
+  const bare = read('prior=paint');
+  assert.equal(bare.config.prior, 'gaussian');
+  assert.match(bare.messages.join(' '), /Invalid prior=/);
+});
+
+test('race opponents come from the searcher registry', () => {
+  assert.deepEqual(races.map((r) => r.id), ['', 'mcts-cells', 'mcts-tree', 'rw', 'levy', 'nsarw']);
+  const tree = races.find((r) => r.id === 'mcts-tree');
+  assert.deepEqual(tree.pairs, [['searcher', 'mcts'], ['variant', 'tree']]);
 });
 
 test('wrap-aware segments never cross the grid', () => {
@@ -95,10 +122,9 @@ test('wrap-aware segments never cross the grid', () => {
   let s = 12345;
   for (let i = 0; i < 500; i++) {
     s = (s * 1103515245 + 12345) % 2 ** 31;
-    const m = s % 4;
+    const d = [[0, -1], [1, 0], [0, 1], [-1, 0]][s % 4];
     const x = c % n;
     const y = Math.floor(c / n);
-    const d = [[0, -1], [1, 0], [0, 1], [-1, 0]][m];
     c = ((y + d[1] + n) % n) * n + ((x + d[0] + n) % n);
     path.push(c);
   }
@@ -114,35 +140,35 @@ test('wrap-aware segments never cross the grid', () => {
  * answers with frames), after a microtask, as the real worker would later.
  */
 function fakeSession({ goal = 10, failReset = false } = {}) {
-  const s = { loops: 0, gen: 0, playing: false, speed: 10, log: [] };
-  const frame = () => ({
-    status: s.loops >= goal ? 'found' : 'running',
-    loopsTotal: s.loops,
-    rolloutSteps: 3 * s.loops,
-    steps: Math.floor(s.loops / 5),
-  });
-  const view = () => {
-    const v = { snap: frame(), status: () => v.snap.status, loopsDone: () => v.snap.loopsTotal, rolloutSteps: () => v.snap.rolloutSteps };
-    v.apply = (f) => { v.snap = f; };
+  const s = { loops: 0, gen: 0, playing: false, speed: 10, log: [], resets: [] };
+  const frame = () => ({ status: s.loops >= goal ? 'found' : 'running', work: s.loops, rollout_steps: 3 * s.loops, steps: Math.floor(s.loops / 5) });
+  const view = (config) => {
+    const v = { frame: frame(), config, status: () => v.frame.status, work: () => v.frame.work, rolloutSteps: () => v.frame.rollout_steps, request: (vw) => ({ vw }) };
+    v.apply = (f) => {
+      v.frame = f;
+    };
     return v;
   };
-  const work = (k) => { s.loops = Math.min(goal, s.loops + k); };
-  s.reset = async () => {
+  const work = (k) => {
+    s.loops = Math.min(goal, s.loops + k);
+  };
+  s.reset = async (configs) => {
     await null;
     if (failReset) throw new Error('boom');
+    s.resets.push(configs);
     s.gen++;
     s.loops = 0;
-    return [view()];
+    return configs.map(view);
   };
   s.current = (answer) => answer.gen === s.gen;
   s.request = async (type, payload = {}) => {
     await null;
-    s.log.push(type);
+    s.log.push([type, payload]);
     if (type === 'play') s.playing = true;
     if (type === 'pause') s.playing = false;
     if (type === 'speed') s.speed = payload.speed;
-    if (type === 'stepLoop') { s.playing = false; work(1); }
-    if (type === 'stepMove') { s.playing = false; work(5); }
+    if (type === 'stepLoop') work(1);
+    if (type === 'stepMove') work(5);
     if (type === 'frame' && s.playing) work(s.speed === 'max' ? goal : s.speed);
     if (type === 'panicForTest') {
       const err = new Error('The engine crashed (wasm panic): test');
@@ -154,7 +180,7 @@ function fakeSession({ goal = 10, failReset = false } = {}) {
   return s;
 }
 
-test('the controller state machine', async () => {
+test('the controller state machine takes commands one way and reports by events', async () => {
   globalThis.document = { body: { dataset: {} } };
   const session = fakeSession({ goal: 10 });
   const frames = [];
@@ -167,51 +193,58 @@ test('the controller state machine', async () => {
   };
   const states = [];
   let drawn = 0;
-  const c = new Controller({ session, spec: () => ({}), views: (runs) => runs.map(() => ({})), draw: () => drawn++, onState: (s) => states.push(s), raf });
-  assert.equal(await c.reset({ autoplay: false }), true);
+  const c = new Controller({ session, raf });
+  c.on('state', (st) => states.push(st));
+  c.on('frame', () => drawn++);
+  const cfg = { n: 12, seed: '3' };
+  assert.equal(await c.dispatch({ type: 'reset', configs: [cfg], autoplay: false }), true);
+  assert.deepEqual(session.resets, [[cfg]], 'the reset carries the configs');
   assert.equal(c.state, 'idle');
   assert.equal(document.body.dataset.state, 'idle');
-  await c.stepLoop();
+  // The view travels with every frame request.
+  c.dispatch({ type: 'view', view: { layers: ['x'], traces: true } });
+  await c.dispatch({ type: 'stepLoop' });
   assert.equal(c.state, 'paused');
-  assert.equal(c.runs[0].loopsDone(), 1);
-  await c.stepMove();
-  assert.equal(c.runs[0].loopsDone(), 6);
-  c.setSpeed(2);
-  c.play();
+  assert.deepEqual(session.log.at(-1), ['stepLoop', { requests: [{ vw: { layers: ['x'], traces: true } }] }]);
+  assert.equal(c.runs[0].work(), 1);
+  await c.dispatch({ type: 'stepMove' });
+  assert.equal(c.runs[0].work(), 6);
+  c.dispatch({ type: 'speed', speed: 2 });
+  c.dispatch({ type: 'play' });
   assert.equal(c.state, 'running');
   await runFrames(20);
   // Two loops per frame until the goal: the run is found and the loop stops.
-  assert.equal(c.runs[0].loopsDone(), 10);
+  assert.equal(c.runs[0].work(), 10);
   assert.equal(c.state, 'found');
   assert.ok(drawn > 0);
   assert.deepEqual(states.slice(-3), ['paused', 'running', 'found']);
   assert.throws(() => c.setState('running'), /invalid state transition/);
+  assert.throws(() => c.dispatch({ type: 'warp' }), /unknown command/);
   // Stepping a finished run does nothing.
-  await c.stepMove();
+  await c.dispatch({ type: 'stepMove' });
   assert.equal(c.state, 'found');
+  // Toggling a finished run replays the same configs.
+  c.dispatch({ type: 'toggle' });
+  await c.whenReady();
+  assert.deepEqual(session.resets.at(-1), [cfg]);
   // A reset overtaken by a newer one leaves only the newer runs.
-  const older = c.reset();
-  const newer = c.reset();
+  const older = c.dispatch({ type: 'reset', configs: [cfg] });
+  const newer = c.dispatch({ type: 'reset', configs: [{ n: 5 }] });
   assert.deepEqual([await older, await newer], [false, true]);
   assert.equal(c.state, 'idle');
+  assert.deepEqual(c.runs.map((r) => r.config), [{ n: 5 }]);
   // A wasm trap in the worker puts the page in `error` with the message.
   const errs = [];
-  c.onError = (e) => errs.push(e.message);
-  await c.send('panicForTest', { message: 'x' });
+  c.on('error', (e) => errs.push(e.message));
+  await c.dispatch({ type: 'request', request: 'panicForTest', payload: { message: 'x' } });
   assert.equal(c.state, 'error');
   assert.match(errs[0], /wasm panic/);
   assert.deepEqual(c.runs, []);
   // A failing reset (an invalid config) too.
-  const bad = new Controller({ session: fakeSession({ failReset: true }), spec: () => ({}), views: () => [], draw: () => {}, onError: (e) => errs.push(e.message), raf });
-  assert.equal(await bad.reset(), false);
+  const bad = new Controller({ session: fakeSession({ failReset: true }), raf });
+  bad.on('error', (e) => errs.push(e.message));
+  assert.equal(await bad.dispatch({ type: 'reset', configs: [{}] }), false);
   assert.equal(bad.state, 'error');
   assert.equal(errs.at(-1), 'boom');
   delete globalThis.document;
-});
-
-test('all required parameter names are specified', () => {
-  const keys = SPECS.map((s) => s.key);
-  for (const k of ['n', 'prior', 'sigma', 'rv', 'start', 'searcher', 'variant', 'rollout', 'belief', 'loops', 'ms', 'c', 'mu', 'final', 'seed', 'speed', 'autoplay']) {
-    assert.ok(keys.includes(k), k);
-  }
 });

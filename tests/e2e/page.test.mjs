@@ -4,6 +4,9 @@
 //
 // Every test fails on console errors, failed requests and requests leaving
 // the origin, except where a test provokes an error on purpose.
+//
+// Tests read and drive the page only through its documented test interface,
+// `window.torusTest` (www/test-hook.js), and through the page's own controls.
 import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
 import { copyFile, mkdir, readFile } from 'node:fs/promises';
@@ -32,8 +35,8 @@ async function withApp(query, fn, { allowErrors = false, viewport } = {}) {
     if (viewport) await page.setViewportSize(viewport);
     // The runs come from the search worker, a moment after the controller exists.
     await page.waitForFunction(() => {
-      const c = window.torusPage?.controller;
-      return c && (c.runs.length || c.state === 'error');
+      const t = window.torusTest;
+      return t && (t.runs().length || t.state() === 'error');
     }, null, { timeout: 30_000 });
     await fn(page, report);
     if (!allowErrors) assert.equal(describeProblems(report), '', 'the page reported problems');
@@ -54,7 +57,7 @@ async function expectText(page, sel, want) {
     assert.equal(await text(page, sel), want, sel);
   }
 }
-const mainPath = (page) => page.evaluate(() => window.torusPage.controller.runs[0].path());
+const mainPath = (page) => page.evaluate(() => window.torusTest.path(0));
 
 async function waitState(page, states, timeout = 90_000) {
   const want = Array.isArray(states) ? states : [states];
@@ -64,8 +67,8 @@ async function waitState(page, states, timeout = 90_000) {
 
 async function runToEnd(page) {
   await page.evaluate(() => {
-    window.torusPage.controller.setSpeed('max');
-    window.torusPage.controller.play();
+    window.torusTest.dispatch({ type: 'speed', speed: 'max' });
+    window.torusTest.dispatch({ type: 'play' });
   });
   return waitState(page, ['found', 'capped']);
 }
@@ -93,9 +96,10 @@ test('the default demo autoplays, draws and reaches found with no console errors
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 3, null, { timeout: 60_000 });
     assert.equal(await state(page), 'running');
     assert.equal(await canvasIsBlank(page, '#view-0'), false);
-    const cfg = await page.evaluate(() => window.torusPage.controller.runs[0].core);
+    const cfg = await page.evaluate(() => window.torusTest.runs()[0].config);
     assert.equal(cfg.n, 40);
-    assert.deepEqual(cfg.prior, { kind: 'gaussian', sigma: 5 });
+    assert.equal(cfg.prior, 'gaussian');
+    assert.equal(cfg.sigma, 5);
     assert.equal(cfg.searcher, 'mcts');
     assert.equal(cfg.variant, 'cells');
     assert.equal(cfg.rollout, 'rw');
@@ -137,7 +141,7 @@ test('the decision panel survives switching between a walker and MCTS', { timeou
     assert.match(await text(page, '#decision-note'), /does not deliberate/);
     await page.selectOption('#searcher', 'mcts');
     await page.locator('#searcher').dispatchEvent('change');
-    await page.evaluate(() => window.torusPage.controller.whenReady());
+    await page.evaluate(() => window.torusTest.ready());
     await page.click('#step-loop');
     await expectText(page, '#rollouts', '1 / 1');
     assert.notEqual(await state(page), 'error', await text(page, '#message'));
@@ -176,24 +180,29 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
     const fingerprint = async () => {
       // A control change restarts the run: wait for the fresh one.
       await page.evaluate(async () => {
-        const c = window.torusPage.controller;
-        await c.whenReady();
-        for (let i = 0; i < 6 && c.isLive(); i++) await c.stepMove();
+        const t = window.torusTest;
+        await t.ready();
+        const live = () => ['idle', 'running', 'paused'].includes(t.state());
+        for (let i = 0; i < 6 && live(); i++) await t.dispatch({ type: 'stepMove' });
       });
-      return page.evaluate(() => ({
-        core: window.torusPage.controller.runs.map((r) => ({ ...r.core, seed: r.seed })),
-        path: (() => {
-          const run = window.torusPage.controller.runs[0];
-          if (!run) throw new Error(`no runs: state ${document.body.dataset.state}, message ${document.getElementById('message').textContent}`);
-          return run.path();
-        })(),
-        search: location.search,
-        speed: window.torusPage.controller.speed,
-      }));
+      return page.evaluate(() => {
+        const t = window.torusTest;
+        const runs = t.runs();
+        if (!runs.length) throw new Error(`no runs: state ${t.state()}, message ${document.getElementById('message').textContent}`);
+        return {
+          // The engine configs of the runs (the seed is part of each).
+          core: runs.map((r) => r.config),
+          path: t.path(0),
+          search: location.search,
+          speed: t.speed(),
+        };
+      });
     };
     const base = await fingerprint();
+    // The page's Restart button: fresh runs from the page's current config.
     const restartBase = async () => {
-      await page.evaluate(() => window.torusPage.controller.reset());
+      await page.click('#reset');
+      await page.evaluate(() => window.torusTest.ready());
     };
     // [control, how to set it, URL param, does the path have to change?]
     const cases = [
@@ -229,7 +238,7 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
       if (JSON.stringify(fp.path) !== JSON.stringify(base.path)) changedPaths.push(sel);
       // Back to the base URL for the next control.
       await page.goto(`${server.url}?autoplay=0&n=15&loops=20&seed=5&sigma=3`);
-      await page.waitForFunction(() => window.torusPage?.controller);
+      await page.waitForFunction(() => window.torusTest);
       await restartBase();
     }
     // Most controls change the first moves; all change the engine config.
@@ -241,7 +250,7 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
     // Speed changes the controller's work per frame and the URL.
     await page.locator('#speed').fill('13');
     await page.locator('#speed').dispatchEvent('input');
-    assert.equal(await page.evaluate(() => window.torusPage.controller.speed), 'max');
+    assert.equal(await page.evaluate(() => window.torusTest.speed()), 'max');
     assert.match(await page.evaluate(() => location.search), /speed=max/);
   });
 });
@@ -250,7 +259,7 @@ test('layer toggles change the drawing', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0&n=20&loops=30&seed=3', async (page) => {
     await page.click('#step-move');
     await page.click('#step-move');
-    for (const id of ['layer-prior', 'layer-visits', 'layer-path', 'layer-grid', 'reveal', 'tiling', 'layer-searched', 'layer-posterior', 'layer-arrows']) {
+    for (const id of ['layer-prior', 'layer-plan', 'layer-visits', 'layer-path', 'layer-grid', 'reveal', 'tiling', 'layer-searched', 'layer-posterior', 'layer-arrows']) {
       const before = await canvasHash(page);
       await page.click(`#${id}`);
       await page.waitForTimeout(100);
@@ -321,6 +330,8 @@ test('export JSON then import replays the episode exactly', { timeout: 180_000 }
     await download.saveAs(file);
     exported = JSON.parse(await readFile(file, 'utf8'));
     assert.equal(exported.format, 'torus-search-episode');
+    assert.equal(exported.version, 2);
+    assert.equal(exported.episode.config.seed, '77', 'each run carries its engine config, seed included');
     assert.deepEqual(exported.episode.path, await mainPath(page));
     const [png] = await Promise.all([page.waitForEvent('download'), page.click('#export-png')]);
     assert.match(png.suggestedFilename(), /\.png$/);
@@ -336,16 +347,17 @@ test('export JSON then import replays the episode exactly', { timeout: 180_000 }
 });
 
 test('bad URL values show a message naming the parameter, and the page still runs', { timeout: 120_000 }, async () => {
-  await withApp('?n=abc&sigma=-1&rv=x&start=99,99&searcher=foo&loops=0&c=nan&mu=5&final=z&seed=-3&speed=fast&autoplay=maybe', async (page) => {
+  await withApp('?n=abc&sigma=-1&rv=x&start=99,99&searcher=foo&loops=0&c=nan&mu=5&final=z&seed=-3&speed=fast&autoplay=maybe&bogus=1', async (page) => {
     const msg = await text(page, '#message');
     for (const key of ['n', 'sigma', 'rv', 'start', 'searcher', 'loops', 'c', 'mu', 'final', 'seed', 'speed', 'autoplay']) {
       assert.match(msg, new RegExp(`Invalid ${key}=`), `no message for ${key}`);
     }
-    assert.match(msg, /allowed integer 3–1024/);
+    assert.match(msg, /Invalid n="abc": allowed an integer in 3\.\.=1024\. Using the default n=40\./);
+    assert.match(msg, /Unknown URL parameter "bogus" ignored\./);
     assert.equal(await page.locator('#message').isVisible(), true);
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 1, null, { timeout: 60_000 });
     assert.equal(await state(page), 'running');
-    assert.equal(await page.evaluate(() => window.torusPage.controller.runs[0].core.n), 40);
+    assert.equal(await page.evaluate(() => window.torusTest.runs()[0].config.n), 40);
   });
 });
 
@@ -387,7 +399,7 @@ test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, a
 test('a wasm panic shows a readable message and sets state error', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0&n=12', async (page, report) => {
     // The panic happens in the search worker's wasm instance, as a real one would.
-    await page.evaluate(() => window.torusPage.controller.send('panicForTest', { message: 'deliberate test panic' }));
+    await page.evaluate(() => window.torusTest.request('panicForTest', { message: 'deliberate test panic' }));
     await waitState(page, 'error', 30_000);
     assert.match(await text(page, '#message'), /wasm panic.*panicForTest: deliberate test panic/);
     assert.ok(report.consoleErrors.some((e) => e.includes('deliberate test panic')), 'the panic hook logs it');
@@ -402,15 +414,19 @@ test('a wasm panic shows a readable message and sets state error', { timeout: 12
 
 test('race mode: same target and seed, side by side, with a scoreboard', { timeout: 180_000 }, async () => {
   await withApp('?race=rw&n=30&sigma=4&seed=11&loops=60&belief=posterior', async (page) => {
-    const targets = await page.evaluate(() => window.torusPage.controller.runs.map((r) => r.targetCell));
+    const runs = await page.evaluate(() => window.torusTest.runs());
+    const targets = runs.map((r) => r.target);
     assert.equal(targets.length, 2);
+    assert.ok(Number.isInteger(targets[0]), `target cell ${targets[0]}`);
     assert.equal(targets[0], targets[1]);
+    assert.equal(runs[0].config.seed, '11');
+    assert.equal(runs[1].config.seed, runs[0].config.seed);
     assert.equal(await page.locator('#board-1').isVisible(), true);
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 12, null, { timeout: 60_000 });
     await viewShot(page, 'race-mode');
     await runToEnd(page);
-    await page.waitForFunction(() => window.torusPage.controller.runs.every((r) => r.status() !== 'running'), null, { timeout: 90_000 });
-    await page.evaluate(() => window.torusPage.controller.requestDraw());
+    await page.waitForFunction(() => window.torusTest.runs().every((r) => r.status !== 'running'), null, { timeout: 90_000 });
+    await page.evaluate(() => window.torusTest.dispatch({ type: 'redraw' }));
     await page.waitForTimeout(200);
     assert.equal(await page.locator('#score-rows tr').count(), 2);
     assert.ok((await page.locator('#score-rows tr.winner').count()) >= 1);
@@ -440,8 +456,13 @@ test('teaching view, clicking the grid sets the start, painting a prior', { time
     const search = await page.evaluate(() => location.search);
     assert.match(search, /prior=paint/);
     assert.match(search, /paint=[A-Za-z0-9_-]+/);
-    const prior = await page.evaluate(() => window.torusPage.controller.runs[0].core.prior.kind);
-    assert.equal(prior, 'weights');
+    // The stroke restarted the run: wait for it.
+    const cfg = await page.evaluate(async () => {
+      await window.torusTest.ready();
+      return window.torusTest.runs()[0].config;
+    });
+    assert.equal(cfg.prior, 'paint');
+    assert.ok(cfg.paint && search.includes(`paint=${cfg.paint}`), 'the run uses the painted prior of the URL');
   });
 });
 
@@ -468,15 +489,12 @@ test('batch trials in Web Workers: same results for any number of workers, trial
       await page.click('#batch-run');
       await page.waitForFunction(() => ['done', 'error', 'stopped'].includes(document.body.dataset.batch), null, { timeout: 120_000 });
       assert.equal(await page.evaluate(() => document.body.dataset.batch), 'done', await text(page, '#batch-progress'));
-      return page.evaluate(() => window.torusPage.lastBatch);
+      return page.evaluate(() => window.torusTest.batch.results());
     };
     await page.fill('#batch-trials', '12');
     const one = await batch();
     assert.equal(one.length, 12);
-    await page.evaluate(() => {
-      window.torusPage.pool.terminate();
-      window.torusPage.pool = new window.torusPage.WorkerPool(3);
-    });
+    await page.evaluate(() => window.torusTest.batch.usePool(3));
     const three = await batch();
     assert.deepEqual(three, one);
     assert.match(await page.locator('#batch-summary').innerText(), /ASOO/);

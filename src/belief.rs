@@ -1,0 +1,150 @@
+//! What the searcher knows about the target: the prior it plans with, the
+//! cells it has searched, and the practice targets MCTS draws from that.
+
+use crate::lattice::Sensor;
+use crate::named::named_enum;
+use crate::prior::{Alias, TargetPrior};
+use crate::rng::Rng;
+
+named_enum! {
+    /// Where practice targets come from.
+    pub enum Belief {
+        /// The prior, as in the paper.
+        Prior = "prior",
+        /// The prior with every searched cell set to zero, renormalised.
+        Posterior = "posterior",
+    }
+}
+
+/// The prior, the searched cells and the posterior of one trial.
+#[derive(Clone, Debug)]
+pub struct BeliefState {
+    kind: Belief,
+    /// The true target's prior.
+    prior: TargetPrior,
+    /// The planning prior when it differs from `prior` (a known target);
+    /// sharing otherwise keeps an N = 1024 episode from holding two copies.
+    plan: Option<TargetPrior>,
+    /// 1 for each cell within r_v of a position occupied so far.
+    searched: Vec<u8>,
+    /// Planning mass not yet searched.
+    remaining: f64,
+    /// Counts changes to `searched`, so a drawing of it can be reused.
+    generation: u64,
+    /// Scratch for the posterior alias table (not a view: see `posterior_into`).
+    posterior: Vec<f64>,
+    alias: Option<Alias>,
+}
+
+/// Writes the planning mass with searched cells zeroed, renormalised, into
+/// `out`. When the prior's support is exhausted (the planner was wrong
+/// about the target) it falls back to uniform over the unsearched cells.
+fn posterior_into(mass: &[f64], searched: &[u8], out: &mut Vec<f64>) {
+    out.clear();
+    out.extend(
+        mass.iter()
+            .zip(searched)
+            .map(|(&m, &s)| if s == 0 { m } else { 0.0 }),
+    );
+    let total: f64 = out.iter().sum();
+    if total > 0.0 {
+        out.iter_mut().for_each(|p| *p /= total);
+    } else {
+        let free = searched.iter().filter(|&&s| s == 0).count().max(1) as f64;
+        for (p, &s) in out.iter_mut().zip(searched) {
+            *p = if s == 0 { 1.0 / free } else { 0.0 };
+        }
+    }
+}
+
+impl BeliefState {
+    /// A belief of `kind` with nothing searched yet; `plan` replaces `prior`
+    /// for planning when the target is known.
+    pub fn new(kind: Belief, prior: TargetPrior, plan: Option<TargetPrior>) -> BeliefState {
+        let cells = prior.mass().len();
+        BeliefState {
+            kind,
+            prior,
+            plan,
+            searched: vec![0; cells],
+            remaining: 1.0,
+            generation: 0,
+            posterior: Vec::new(),
+            alias: None,
+        }
+    }
+
+    fn planning(&self) -> &TargetPrior {
+        self.plan.as_ref().unwrap_or(&self.prior)
+    }
+
+    /// Marks every cell within the sensor's radius of `cell` as searched.
+    pub fn search_around(&mut self, sensor: &Sensor, cell: u32) {
+        let mass = self.plan.as_ref().unwrap_or(&self.prior).mass();
+        let mut changed = false;
+        for c in sensor.around(cell) {
+            let c = c as usize;
+            if self.searched[c] == 0 {
+                self.searched[c] = 1;
+                self.remaining -= mass[c];
+                changed = true;
+            }
+        }
+        if changed {
+            self.alias = None;
+            self.generation += 1;
+        }
+    }
+
+    /// A practice target from the belief.
+    pub fn practice_target(&mut self, rng: &mut Rng) -> u32 {
+        if self.kind == Belief::Prior {
+            return self.planning().sample(rng);
+        }
+        // Rejection from the prior is exact for the posterior and cheap while
+        // much mass remains; past a few misses fall back to an alias table.
+        for _ in 0..8 {
+            let c = self.planning().sample(rng);
+            if self.searched[c as usize] == 0 {
+                return c;
+            }
+        }
+        if self.alias.is_none() {
+            let mass = self.plan.as_ref().unwrap_or(&self.prior).mass();
+            posterior_into(mass, &self.searched, &mut self.posterior);
+            self.alias = Some(Alias::new(&self.posterior));
+        }
+        self.alias.as_ref().expect("built above").sample(rng)
+    }
+
+    /// The true target's prior mass per cell.
+    pub fn prior_mass(&self) -> &[f64] {
+        self.prior.mass()
+    }
+
+    /// The planning prior's mass (differs from the prior with `known`).
+    pub fn plan_mass(&self) -> &[f64] {
+        self.planning().mass()
+    }
+
+    /// Writes the posterior (the planning prior with searched cells zeroed,
+    /// renormalised) into `out`.
+    pub fn posterior_into(&self, out: &mut Vec<f64>) {
+        posterior_into(self.planning().mass(), &self.searched, out);
+    }
+
+    /// 1 for each cell within r_v of any position occupied so far.
+    pub fn searched(&self) -> &[u8] {
+        &self.searched
+    }
+
+    /// Planning mass not yet searched.
+    pub fn remaining(&self) -> f64 {
+        self.remaining.max(0.0)
+    }
+
+    /// Changes whenever the searched set (and so the posterior) changes.
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+}

@@ -1,0 +1,67 @@
+// The decision panel: for each of the four moves, its visits and picks,
+// mean reward, exploration term and UCT value, with the formula worked out
+// for the move the final rule leads with. All values come from the engine's
+// frame (`decision`, with `leading`: the moves the final rule would choose
+// among now).
+
+import { $, setText, fmtInt, fmtNum } from '../ui.js';
+import { MOVE_NAMES } from '../renderer.js';
+
+const ARROWS = ['↑', '→', '↓', '←'];
+const RULES = { visits: 'most picks', mean: 'best mean', uct: 'best UCT' };
+
+function rows() {
+  const body = $('decision').tBodies[0];
+  if (!body.rows.length) {
+    for (let m = 0; m < 4; m++) {
+      const tr = body.insertRow();
+      for (let k = 0; k < 5; k++) tr.insertCell();
+      tr.cells[0].className = 'move';
+    }
+  }
+  return body.rows;
+}
+
+/** Shows the decision under way of `run`. */
+export function updateDecision(run) {
+  const trs = rows();
+  const d = run.frame.decision;
+  if (!d) {
+    for (const tr of trs) for (const td of tr.cells) setText(td, '–');
+    setText('decision-note', run.deliberates ? '' : `${run.label} does not deliberate: ${run.help}.`);
+    return;
+  }
+  const running = run.frame.status === 'running';
+  const totalSel = d.children.reduce((a, c) => a + c.selected, 0) || 1;
+  d.children.forEach((c, m) => {
+    const tr = trs[m];
+    tr.classList.toggle('chosen', running && d.leading[m]);
+    setText(tr.cells[0], `${ARROWS[m]} ${MOVE_NAMES[m]}`);
+    // Visits: N(vᵢ) of the child, picks this decision, and a bar.
+    const td = tr.cells[1];
+    // A run without a decision yet (or a walker) left plain text here.
+    if (td.childNodes.length !== 3) {
+      td.replaceChildren(document.createTextNode(''), document.createElement('span'), document.createElement('span'));
+      td.childNodes[1].className = 'split';
+      td.childNodes[2].className = 'bar';
+    }
+    td.childNodes[0].nodeValue = fmtInt(c.visits);
+    td.childNodes[1].textContent = `picked ${fmtInt(c.selected)}`;
+    td.childNodes[2].style.width = `${Math.round((100 * c.selected) / totalSel)}%`;
+    setText(tr.cells[2], c.visits ? fmtNum(c.mean) : '–');
+    setText(tr.cells[3], c.visits ? fmtNum(c.explore) : '∞');
+    setText(tr.cells[4], c.visits ? fmtNum(c.uct) : '∞');
+  });
+  let note = `N(v) = ${fmtInt(d.parent_visits)}, c = ${fmtNum(d.c, 3)}. Final move: ${RULES[d.rule] ?? d.rule}.`;
+  const leads = d.leading.flatMap((l, m) => (l ? [m] : []));
+  if (running && leads.length > 1) note += ` Tied: ${leads.map((m) => MOVE_NAMES[m]).join(', ')} (one at random).`;
+  if (running && leads.length) {
+    const m = leads[0];
+    const c = d.children[m];
+    if (c.visits) {
+      note += ` ${MOVE_NAMES[m]}: ${fmtNum(c.mean)} + ${fmtNum(d.c, 3)}·√(ln ${fmtInt(d.parent_visits)} / ${fmtInt(c.visits)}) = ${fmtNum(c.mean)} + ${fmtNum(c.explore)} = ${fmtNum(c.uct)}.`;
+    }
+  }
+  if (run.config.variant === 'cells') note += ' (cells: N(vᵢ) counts every rollout that passed through the neighbour.)';
+  setText('decision-note', note);
+}

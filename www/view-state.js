@@ -1,0 +1,104 @@
+// What the page shows, as opposed to what it runs: the heat layers (one
+// checkbox per layer the engine's schema lists), the log scale, the path,
+// rollout traces, arrows, grid, reveal and the periodic view. It turns them
+// into the frame request the controller sends with each frame.
+
+import { $ } from './ui.js';
+
+/** Heat layers ticked on first load. */
+const DEFAULT_LAYERS = ['prior', 'visits'];
+const OPTION_IDS = ['layer-path', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
+const TRACE_IDS = ['layer-rollouts', 'rollout-k', 'layer-practice'];
+
+export class ViewState {
+  /**
+   * @param {object} schema the engine's schema (its `layers`)
+   * @param {{ redraw: () => void, traces: () => void }} on  called when a
+   *   view option changes; `traces` when the trace count changed, which
+   *   needs a fresh run (traces are kept from a run's start)
+   */
+  constructor(schema, on) {
+    this.layers = schema.layers;
+    const box = $('layer-checks');
+    const frag = document.createDocumentFragment();
+    for (const l of this.layers) {
+      const label = document.createElement('label');
+      const input = document.createElement('input');
+      input.type = 'checkbox';
+      input.id = `layer-${l.name}`;
+      input.checked = DEFAULT_LAYERS.includes(l.name);
+      input.addEventListener('change', on.redraw);
+      label.append(input, ` ${l.label}`);
+      frag.append(label);
+    }
+    box.prepend(frag);
+    for (const id of OPTION_IDS) $(id).addEventListener('change', on.redraw);
+    this.kept = this.keepTraces();
+    for (const id of TRACE_IDS) {
+      $(id).addEventListener('change', () => {
+        if (this.keepTraces() !== this.kept) on.traces();
+        else on.redraw();
+      });
+    }
+  }
+
+  /** Heat layers to draw, bottom to top, as frame requests. */
+  layerRequests() {
+    const log = $('log-scale').checked;
+    return this.layers
+      .filter((l) => $(`layer-${l.name}`).checked)
+      .map((l) => ({
+        layer: l.name,
+        palette: l.palette,
+        scale: l.counts ? (log ? 'log' : 'stretch') : 'linear',
+        alpha: l.alpha,
+      }));
+  }
+
+  /** What each frame must carry: { layers, traces }. */
+  frameView() {
+    return { layers: this.layerRequests(), traces: $('layer-rollouts').checked || $('layer-practice').checked };
+  }
+
+  /** How many rollout traces a run must keep (the engine's keep_traces). */
+  keepTraces() {
+    const k = Math.min(64, Math.max(1, Math.round(Number($('rollout-k').value)) || 1));
+    if ($('layer-rollouts').checked) return k;
+    return $('layer-practice').checked ? 1 : 0;
+  }
+
+  /** Records the trace count a fresh run was built with. */
+  usedTraces(k) {
+    this.kept = k;
+  }
+
+  /** Shows `k` kept traces (from a URL's keep_traces). */
+  setTraces(k) {
+    if (k > 0) {
+      $('layer-rollouts').checked = true;
+      $('rollout-k').value = String(k);
+    } else {
+      $('layer-rollouts').checked = false;
+      $('layer-practice').checked = false;
+    }
+  }
+
+  /** The drawing options. */
+  options() {
+    return {
+      path: $('layer-path').checked,
+      rollouts: $('layer-rollouts').checked,
+      practice: $('layer-practice').checked,
+      arrows: $('layer-arrows').checked,
+      grid: $('layer-grid').checked,
+      reveal: $('reveal').checked,
+      tiling: $('tiling').checked,
+    };
+  }
+
+  /** Ticks the layers and options of the teaching view. */
+  teaching() {
+    for (const id of ['layer-rollouts', 'layer-practice', 'layer-visits', 'layer-prior', 'layer-arrows', 'layer-grid']) $(id).checked = true;
+    $('rollout-k').value = '3';
+  }
+}
