@@ -108,10 +108,7 @@ impl LoopRunner {
         let target = self.loops + loops;
         while self.loops < target {
             let before = self.episode.counters().rollouts;
-            let chunk = (target - self.loops).min(64) as u32;
-            if self.episode.step_loops(chunk) {
-                self.moves += 1;
-            }
+            self.moves += self.episode.advance(target - self.loops);
             self.loops += self.episode.counters().rollouts - before;
             if self.episode.status() != crate::episode::Status::Running {
                 self.episodes += 1;

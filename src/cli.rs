@@ -207,13 +207,9 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
         );
         return Ok(());
     }
-    let trials = match m.get_one::<String>(TRIALS.key) {
-        Some(raw) => match TRIALS.kind.parse(TRIALS.key, raw).map_err(usage)? {
-            config::Value::Int(t) => t,
-            _ => unreachable!("trials is an integer parameter"),
-        },
-        None => 1000,
-    };
+    let trials = TRIALS
+        .int_value(m.get_one::<String>(TRIALS.key).map(String::as_str))
+        .map_err(usage)?;
     let threads = int_flag(m, "threads", 1, 1024)?.map_or_else(
         || std::thread::available_parallelism().map_or(1, |n| n.get()),
         |t| t as usize,

@@ -8,7 +8,7 @@
 //! controls, and experiment sweeps name parameters by its keys.
 
 use crate::belief::Belief;
-use crate::lattice::{MAX_N, MIN_N};
+use crate::lattice::{Torus, MAX_N, MIN_N};
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::prior::{self, PriorKind, PriorSpec};
@@ -361,6 +361,27 @@ impl Param {
     /// The CLI flag without its dashes (`step_cap` → `step-cap`).
     pub fn flag(&self) -> String {
         self.key.replace('_', "-")
+    }
+
+    /// An integer parameter's value read from `raw`, or its default when
+    /// `raw` is `None`.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] for text out of range, or for a parameter that is
+    /// not an integer.
+    pub fn int_value(&self, raw: Option<&str>) -> Result<u64, ConfigError> {
+        let v = match raw {
+            Some(raw) => self.kind.parse(self.key, raw)?,
+            None => self.default.clone(),
+        };
+        match v {
+            Value::Int(x) => Ok(x),
+            other => Err(ConfigError::new(
+                self.key,
+                other.text(),
+                self.kind.allowed(),
+            )),
+        }
     }
 
     /// True when this parameter affects a run of `cfg`.
@@ -864,15 +885,16 @@ impl Config {
             .collect()
     }
 
-    /// The prior that places the target, from `prior`, `sigma`, `paint` and `target`.
+    /// The prior that places the target on `torus`, from `prior`, `sigma`,
+    /// `paint` and `target`.
     ///
     /// # Errors
     /// A [`ConfigError`] for `paint` when it does not decode for this n.
-    pub fn prior_spec(&self) -> Result<PriorSpec, ConfigError> {
+    pub fn prior_spec(&self, torus: &Torus) -> Result<PriorSpec, ConfigError> {
         let n = self.n;
         Ok(match (self.target, self.prior) {
             (Some([x, y]), _) => PriorSpec::Delta {
-                cell: Some((y.saturating_sub(1) % n.max(1)) * n + x.saturating_sub(1) % n.max(1)),
+                cell: Some(torus.cell(x as i64 - 1, y as i64 - 1)),
             },
             (None, PriorKind::Gaussian) => PriorSpec::Gaussian { sigma: self.sigma },
             (None, PriorKind::Delta) => PriorSpec::Delta { cell: None },

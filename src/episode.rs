@@ -149,8 +149,8 @@ impl Episode {
         cfg.validate()?;
         // Past validation the lattice, the sensor and the priors build:
         // n, r_v, the cells and the paint were checked against their ranges.
-        let spec = cfg.prior_spec()?;
         let torus = Torus::new(cfg.n).expect("n was validated");
+        let spec = cfg.prior_spec(&torus)?;
         let sensor = Sensor::new(&torus, cfg.rv).expect("rv was validated");
         let prior = TargetPrior::new(&torus, &spec).expect("the prior was validated");
         let start = torus.cell(cfg.start[0] as i64 - 1, cfg.start[1] as i64 - 1);
@@ -201,12 +201,13 @@ impl Episode {
         if self.status != Status::Running || max_loops == 0 {
             return false;
         }
+        let pos = self.position();
         let mut w = World {
             torus: &self.torus,
             sensor: &mut self.sensor,
             belief: &mut self.belief,
             rng: &mut self.rng,
-            pos: *self.path.last().expect("the path holds the start"),
+            pos,
             budget: &mut self.budget,
             traces: &mut self.traces,
             counters: &mut self.counters,

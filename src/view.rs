@@ -8,6 +8,7 @@
 //! when the display already holds that key, the layer is not coloured or
 //! sent again. Keys come from generation counters the episode keeps.
 
+use crate::batch::Fnv;
 use crate::episode::{Episode, Status};
 use crate::mcts::{self, DecisionView, FinalRule};
 use crate::named::named_enum;
@@ -270,17 +271,6 @@ pub fn recolour_period_ms(cells: usize, live: bool) -> f64 {
     }
 }
 
-fn fnv(words: &[u64]) -> u64 {
-    let mut h = 0xcbf2_9ce4_8422_2325u64;
-    for w in words {
-        for b in w.to_le_bytes() {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-    h
-}
-
 fn le_bytes(cells: &[u32], out: &mut Vec<u8>) {
     out.clear();
     out.reserve(4 * cells.len());
@@ -335,9 +325,13 @@ impl FrameBuilder {
                 lr.alpha[0] as u64,
                 lr.alpha[1] as u64,
             ];
-            let key = fnv(&[
+            let mut h = Fnv::default();
+            for w in [
                 self.id, i as u64, style[0], style[1], style[2], style[3], effective,
-            ]) & KEY_MASK;
+            ] {
+                h.word(w);
+            }
+            let key = h.finish() & KEY_MASK;
             let same = lr.have == Some(key);
             if !same && !self.render(ep, lr) {
                 continue; // this searcher has no such layer

@@ -263,14 +263,7 @@ pub fn run_trial(config: JsValue, index: f64) -> Result<Vec<f64>, JsError> {
 /// Reads a batch's number of trials from text, checked against its range.
 #[wasm_bindgen(js_name = parseTrials)]
 pub fn parse_trials(raw: &str) -> Result<f64, JsError> {
-    match config::TRIALS
-        .kind
-        .parse(config::TRIALS.key, raw)
-        .map_err(err)?
-    {
-        config::Value::Int(t) => Ok(t as f64),
-        _ => Err(JsError::new("trials must be an integer")),
-    }
+    Ok(config::TRIALS.int_value(Some(raw)).map_err(err)? as f64)
 }
 
 /// The batch statistics (the core's `stats::Summary`, serialised as the
