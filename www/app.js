@@ -182,7 +182,7 @@ async function boot() {
     app.panelsTs = ts;
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);
-    legend.update(requested.flatMap((l) => (runs[0].layers.has(l.layer) ? [{ ...runs[0].layers.get(l.layer), scale: l.scale }] : [])));
+    legend.update(runs[0].drawnLayers(requested));
     const known = (r) => r.frame.status === 'found' || opts.reveal;
     chart.push(app.runTime, runs.map((r) => r.frame.steps), runs.map((r) => (known(r) ? r.optimal : null)), state !== 'running');
   });

@@ -83,7 +83,7 @@ export class Boards {
     runs.forEach((run, i) => {
       const f = run.frame;
       const running = f.status === 'running';
-      const layers = requested.flatMap((l) => (run.layers.has(l.layer) ? [run.layers.get(l.layer)] : []));
+      const layers = run.drawnLayers(requested);
       if (preview && i === 0) {
         // A preview changes every stroke: never reuse an upload for it (no key).
         const at = layers.findIndex((l) => l.layer === 'prior');

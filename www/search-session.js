@@ -45,6 +45,14 @@ export class RunView {
     };
   }
 
+  /**
+   * The renderings held for `requested` layers, bottom to top, each with the
+   * scale it was asked in (layers this run lacks are left out).
+   */
+  drawnLayers(requested) {
+    return requested.flatMap((l) => (this.layers.has(l.layer) ? [{ ...this.layers.get(l.layer), scale: l.scale }] : []));
+  }
+
   /** Takes in one frame from the worker. */
   apply(f) {
     const { path, path_from: from, layers, traces, practice, ...header } = f;

@@ -3,6 +3,15 @@
 
 export const $ = (id) => document.getElementById(id);
 
+/** Friendlier names for some choices (a choice without one shows its name). */
+export const CHOICE_LABELS = {
+  prior: { gaussian: 'Gaussian', delta: 'Delta (centre)', uniform: 'Uniform', paint: 'Paint your own' },
+  variant: { cells: 'cells (paper)' },
+  rollout: { rw: 'random walk', levy: 'Lévy flight', nsarw: 'NSARW' },
+  belief: {},
+  final: { visits: 'most picks', mean: 'best mean', uct: 'best UCT' },
+};
+
 /** Sets an element's text (by id or element) only when it changes, to spare layout. */
 export function setText(el, text) {
   const node = typeof el === 'string' ? $(el) : el;

@@ -4,11 +4,10 @@
 // frame (`decision`, with `leading`: the moves the final rule would choose
 // among now).
 
-import { $, setText, fmtInt, fmtNum } from '../ui.js';
+import { $, setText, fmtInt, fmtNum, CHOICE_LABELS } from '../ui.js';
 import { MOVE_NAMES } from '../renderer.js';
 
 const ARROWS = ['↑', '→', '↓', '←'];
-const RULES = { visits: 'most picks', mean: 'best mean', uct: 'best UCT' };
 
 function rows() {
   const body = $('decision').tBodies[0];
@@ -52,7 +51,7 @@ export function updateDecision(run) {
     setText(tr.cells[3], c.visits ? fmtNum(c.explore) : '∞');
     setText(tr.cells[4], c.visits ? fmtNum(c.uct) : '∞');
   });
-  let note = `N(v) = ${fmtInt(d.parent_visits)}, c = ${fmtNum(d.c, 3)}. Final move: ${RULES[d.rule] ?? d.rule}.`;
+  let note = `N(v) = ${fmtInt(d.parent_visits)}, c = ${fmtNum(d.c, 3)}. Final move: ${CHOICE_LABELS.final[d.rule] ?? d.rule}.`;
   const leads = d.leading.flatMap((l, m) => (l ? [m] : []));
   if (running && leads.length > 1) note += ` Tied: ${leads.map((m) => MOVE_NAMES[m]).join(', ')} (one at random).`;
   if (running && leads.length) {
