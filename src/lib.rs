@@ -15,6 +15,7 @@ pub mod config;
 pub mod episode;
 pub mod lattice;
 pub mod mcts;
+pub mod preset;
 pub mod prior;
 pub mod race;
 pub mod render;

@@ -1,0 +1,107 @@
+//! Named readings of the paper: bundles of parameter values.
+//!
+//! The authors' code differs from their text in ways that change results
+//! (`../shared/paper-code-differences.md`), so both readings are offered.
+//! A preset is only a list of `(key, value)` edits over the schema: applying
+//! one is the same as typing those flags, and anything given after it wins.
+//! `EXPERIMENTS.md` documents each edit point by point.
+
+use crate::config::{Config, ConfigError};
+use crate::named::named_enum;
+
+named_enum! {
+    /// A named reading of the paper.
+    pub enum Preset {
+        /// The algorithm as the paper's text describes it.
+        PaperText = "paper-text",
+        /// The selection and statistics of the authors' `MCTSgaussian.m`.
+        PaperCode = "paper-code",
+    }
+}
+
+impl Preset {
+    /// The parameter values this preset sets, as schema text.
+    pub fn edits(self) -> &'static [(&'static str, &'static str)] {
+        match self {
+            // Section 2 of the text: c = √2, statistics per searcher
+            // location, a practice target "placed according to the known
+            // distribution" (the prior), "the best move" read as the most
+            // selected child, no step or rollout cap given (the code's
+            // 10 000 is used so runs end).
+            Preset::PaperText => &[
+                ("searcher", "mcts"),
+                ("variant", "cells"),
+                ("belief", "prior"),
+                ("c", "1.4142135623730951"),
+                ("final", "visits"),
+                ("reset_each_move", "0"),
+                ("rollout_cap", "10000"),
+                ("step_cap", "10000"),
+            ],
+            Preset::PaperCode => &[
+                ("searcher", "mcts"),
+                ("variant", "cells"),
+                ("belief", "prior"),
+                ("c", "2"),
+                ("final", "uct"),
+                ("reset_each_move", "0"),
+                ("rollout_cap", "10000"),
+                ("step_cap", "10000"),
+            ],
+        }
+    }
+
+    /// One line of help for the CLI and the page.
+    pub fn help(self) -> &'static str {
+        match self {
+            Preset::PaperText => "the algorithm as the paper's text describes it (c = √2, practice targets from the prior, most-selected move)",
+            Preset::PaperCode => "the authors' MCTSgaussian.m: c = 2, exploitation 1/K(s), max-UCT move, pass-through visits, statistics kept all trial, caps 10 000",
+        }
+    }
+
+    /// The preset named `name`.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] for field `preset` listing the names.
+    pub fn from_name(name: &str) -> Result<Preset, ConfigError> {
+        Preset::parse(name).ok_or_else(|| {
+            ConfigError::new(
+                "preset",
+                name.to_string(),
+                format!("one of {}", Preset::NAMES.join(", ")),
+            )
+        })
+    }
+
+    /// Sets this preset's values in `cfg`; other fields are kept.
+    pub fn apply(self, cfg: &mut Config) {
+        for (key, value) in self.edits() {
+            cfg.set(key, value)
+                .unwrap_or_else(|e| panic!("preset {self} sets {key}={value}: {e}"));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_applies_and_validates() {
+        for &p in Preset::ALL {
+            let mut cfg = Config::default();
+            p.apply(&mut cfg);
+            cfg.validate().unwrap();
+            for (key, value) in p.edits() {
+                assert_eq!(&cfg.get(key).unwrap(), value, "{p}: {key}");
+            }
+        }
+    }
+
+    #[test]
+    fn unknown_names_are_refused_with_the_list() {
+        let e = Preset::from_name("paper").unwrap_err();
+        assert_eq!(e.field, "preset");
+        assert!(e.to_string().contains("paper-text, paper-code"), "{e}");
+    }
+}
