@@ -560,7 +560,7 @@ pub static PARAMS: &[Param] = &[
         key: "variant",
         kind: Kind::Choice(|| Variant::NAMES.to_vec()),
         default: Value::Name(Cow::Borrowed("cells")),
-        help: "MCTS statistics: cells (the paper's per-cell table) or tree (a search tree with subtree reuse)",
+        help: "MCTS statistics: cells (the paper's per-cell table), tree (a search tree with subtree reuse) or code (the authors' MATLAB statistics, for the paper-code preset)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Name(Cow::Borrowed(c.variant.name())),

@@ -40,7 +40,7 @@ impl Preset {
             ],
             Preset::PaperCode => &[
                 ("searcher", "mcts"),
-                ("variant", "cells"),
+                ("variant", "code"),
                 ("belief", "prior"),
                 ("c", "2"),
                 ("final", "uct"),

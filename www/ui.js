@@ -6,7 +6,7 @@ export const $ = (id) => document.getElementById(id);
 /** Friendlier names for some choices (a choice without one shows its name). */
 export const CHOICE_LABELS = {
   prior: { gaussian: 'Gaussian', delta: 'Delta (centre)', uniform: 'Uniform', paint: 'Paint your own' },
-  variant: { cells: 'cells (paper)' },
+  variant: { cells: 'cells (paper)', code: "code (authors' MATLAB)" },
   rollout: { rw: 'random walk', levy: 'Lévy flight', nsarw: 'NSARW' },
   belief: {},
   final: { visits: 'most picks', mean: 'best mean', uct: 'best UCT' },

@@ -201,6 +201,7 @@ impl Stats for CellTable {
             rollout_steps: steps,
             detected,
             reward,
+            counts: true,
         }
     }
 }

@@ -2,8 +2,10 @@
 //!
 //! * [`cells`] keeps statistics per lattice cell, as the paper and its code do.
 //! * [`tree`] keeps a real search tree of move sequences.
+//! * [`code`] keeps the per-cell statistics of the authors' MATLAB code.
 
 pub mod cells;
+pub mod code;
 pub mod tree;
 
 use crate::lattice::{Move, Torus};
@@ -12,6 +14,7 @@ use crate::rng::{self, Rng};
 use crate::searchers::{Outcome, Policy, Searcher, SearcherInfo, Setup, Visit, World};
 use crate::view::Layer;
 use cells::CellTable;
+use code::CodeTable;
 use tree::Tree;
 
 /// MCTS as a searcher: the variant (`cells` or `tree`) keeps the statistics.
@@ -25,7 +28,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
             true
         }
         "loops" => c.ms.is_none(),
-        "reset_each_move" => c.variant == Variant::Cells,
+        "reset_each_move" => c.variant != Variant::Tree,
         "tree_nodes" => c.variant == Variant::Tree,
         "mu" => c.rollout == crate::searchers::PolicyKind::Levy,
         "epsilon" => c.rollout == crate::searchers::PolicyKind::Greedy,
@@ -34,6 +37,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     build: |s| match s.cfg.variant {
         Variant::Cells => Box::new(Mcts::new(CellTable::new(s.torus.cells()), s)),
         Variant::Tree => Box::new(Mcts::new(Tree::new(s.cfg.tree_nodes), s)),
+        Variant::Code => Box::new(Mcts::new(CodeTable::new(s.torus.cells()), s)),
     },
 };
 
@@ -44,6 +48,8 @@ named_enum! {
         Cells = "cells",
         /// A search tree of move sequences with subtree reuse.
         Tree = "tree",
+        /// The statistics of the authors' `MCTSgaussian.m` (the `paper-code` preset).
+        Code = "code",
     }
 }
 
@@ -248,8 +254,10 @@ impl<S: Stats> Searcher for Mcts<S> {
             let report = self.stats.iterate(&mut env, w.pos);
             w.traces.commit(practice);
             w.counters.add(report.rollout_steps, report.detected);
-            w.budget.record(report.rollout_steps, report.detected);
-            done += 1;
+            if report.counts {
+                w.budget.record(report.rollout_steps, report.detected);
+                done += 1;
+            }
         }
         if !w.budget.spent() {
             return None;
@@ -301,6 +309,10 @@ pub struct LoopReport {
     pub detected: bool,
     /// The backpropagated reward.
     pub reward: f64,
+    /// False for a rollout that is not one of the decision's loops (the
+    /// `code` variant's expansion rollouts): it is counted as a rollout but
+    /// not against the loop budget.
+    pub counts: bool,
 }
 
 /// A visitor that forwards to an optional trace and an inner visitor.

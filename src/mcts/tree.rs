@@ -211,6 +211,7 @@ impl Stats for Tree {
             rollout_steps: steps,
             detected,
             reward,
+            counts: true,
         }
     }
 

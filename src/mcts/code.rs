@@ -1,0 +1,160 @@
+//! The `code` variant: the statistics of the authors' `MCTSgaussian.m`.
+//!
+//! The paper's text and its code differ (`../shared/paper-code-differences.md`,
+//! items 6–12); this variant reproduces the code's selection and statistics
+//! on the true N-torus, so that the `paper-code` preset can be compared with
+//! the authors' published numbers:
+//! * `Nx` counts visits per cell: +1 for the root and for the selected
+//!   neighbour each loop, and +1 for **every rollout step** into a cell
+//!   (repeats included), so pass-through visits dominate it.
+//! * `K(s)` sums the rollout steps of every loop that selected neighbour `s`
+//!   (a rollout cut at the cap adds the cap), and `Qx(s)` is refreshed to
+//!   `Nx(s)/K(s)` each time `s` is selected. The exploitation term
+//!   `Qx/Nx` is then about `1/K(s)`: normalised twice, it shrinks as a child
+//!   gets more rollouts, whatever they found.
+//! * Before a decision's loops, each neighbour with `Nx = 0` gets one
+//!   expansion rollout (up, right, down, left). These are rollouts but not
+//!   loops: they do not count against the loop budget, as in the code.
+//! * UCT is `Qx/Nx + c·sqrt(|ln Nx(root)| / Nx)`.
+//!
+//! A rollout that detects its target on the selected cell adds no steps, so
+//! `K(s) = 0` and `Qx(s) = ∞`: the code's `1/0`, which makes that neighbour
+//! win every later selection. Statistics persist for the whole trial unless
+//! reset each move.
+
+use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
+use crate::lattice::{Move, Torus};
+use crate::searchers::Visit;
+
+/// Per-cell statistics of the authors' code.
+#[derive(Clone, Debug)]
+pub struct CodeTable {
+    /// `Nx`: visits, pass-through rollout steps included.
+    visits: Vec<u32>,
+    /// `K`: rollout steps of the loops that selected the cell.
+    steps: Vec<u64>,
+    /// `Qx`: `Nx/K` as of the cell's last selection (∞ when `K = 0`).
+    q: Vec<f64>,
+    selected: [u32; 4],
+}
+
+/// Counts a visit for every rollout step (the code's `Nx(sx1,sy1) += 1`).
+struct PassThrough<'a> {
+    visits: &'a mut [u32],
+}
+
+impl Visit for PassThrough<'_> {
+    #[inline]
+    fn visit(&mut self, cell: u32, _step: u32) {
+        self.visits[cell as usize] += 1;
+    }
+}
+
+impl CodeTable {
+    /// An empty table for `cells` cells.
+    pub fn new(cells: usize) -> CodeTable {
+        CodeTable {
+            visits: vec![0; cells],
+            steps: vec![0; cells],
+            q: vec![0.0; cells],
+            selected: [0; 4],
+        }
+    }
+
+    /// Visits `root` and `child`, rolls out from `child`, and updates its
+    /// `K` and `Qx`.
+    fn playout(&mut self, env: &mut LoopEnv<'_>, root: u32, child: u32) -> (u32, bool) {
+        self.visits[root as usize] += 1;
+        self.visits[child as usize] += 1;
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.clear();
+            t.push(root);
+            t.push(child);
+        }
+        let (steps, detected) = if env.mask[child as usize] != 0 {
+            (0, true)
+        } else {
+            let trace = env.trace.take();
+            let mut tee = Tee {
+                inner: PassThrough {
+                    visits: &mut self.visits,
+                },
+                trace,
+            };
+            let out = rollout(env, child, &mut tee);
+            env.trace = tee.trace;
+            (out.steps, out.detected)
+        };
+        let c = child as usize;
+        self.steps[c] += steps as u64;
+        // The code's Qx = 1/Kx with Kx = K/Nx; K = 0 gives 1/0 = ∞.
+        self.q[c] = if self.steps[c] == 0 {
+            f64::INFINITY
+        } else {
+            self.visits[c] as f64 / self.steps[c] as f64
+        };
+        (steps, detected)
+    }
+}
+
+impl Stats for CodeTable {
+    fn begin_decision(&mut self, _root: u32, reset: bool) {
+        if reset {
+            self.visits.fill(0);
+            self.steps.fill(0);
+            self.q.fill(0.0);
+        }
+        self.selected = [0; 4];
+    }
+
+    fn advance(&mut self, _m: Move) {}
+
+    fn visits<'a>(&'a self, _cells: usize, _scratch: &'a mut Vec<u32>) -> &'a [u32] {
+        &self.visits
+    }
+
+    fn view(&self, torus: &Torus, root: u32, c: f64) -> DecisionView {
+        let parent = self.visits[root as usize];
+        let children = std::array::from_fn(|i| {
+            let cell = torus.step(root, Move::ALL[i]);
+            let (v, q) = (self.visits[cell as usize], self.q[cell as usize]);
+            ChildStat::new(cell, v, q, parent, c, self.selected[i])
+        });
+        DecisionView {
+            parent_visits: parent,
+            c,
+            children,
+        }
+    }
+
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
+        // Expansion first: the code tests the neighbours in this order once
+        // per move, and a count never returns to 0, so testing here on every
+        // call finds them exactly then.
+        let unvisited = Move::ALL
+            .iter()
+            .map(|&m| env.torus.step(root, m))
+            .position(|cell| self.visits[cell as usize] == 0);
+        let (child, counts) = match unvisited {
+            Some(i) => (env.torus.step(root, Move::ALL[i]), false),
+            None => {
+                // The root's visit comes before the UCT values, as in the code.
+                self.visits[root as usize] += 1;
+                let view = self.view(env.torus, root, env.c);
+                self.visits[root as usize] -= 1;
+                let a =
+                    argmax_random(view.children.map(|ch| ch.uct), [true; 4], env.rng).unwrap_or(0);
+                self.selected[a] += 1;
+                (view.children[a].cell, true)
+            }
+        };
+        let (steps, detected) = self.playout(env, root, child);
+        let tau = 1 + steps;
+        LoopReport {
+            rollout_steps: steps,
+            detected,
+            reward: if detected { 1.0 / tau as f64 } else { 0.0 },
+            counts,
+        }
+    }
+}
