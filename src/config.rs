@@ -11,6 +11,7 @@ use crate::belief::Belief;
 use crate::lattice::{Torus, MAX_N, MIN_N};
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
+use crate::preset::Preset;
 use crate::prior::{self, PriorKind, PriorSpec};
 use crate::searchers::{self, PolicyKind, SearcherId};
 use std::borrow::Cow;
@@ -827,7 +828,14 @@ impl Config {
     ///
     /// # Errors
     /// A [`ConfigError`] for an unknown key or a value out of range.
+    ///
+    /// The key [`PRESET`] is not a field: it sets every value of that
+    /// preset (`crate::preset`), so a URL or a form can name one.
     pub fn set(&mut self, key: &str, raw: &str) -> Result<(), ConfigError> {
+        if key == PRESET {
+            Preset::from_name(raw)?.apply(self);
+            return Ok(());
+        }
         let p = param(key).ok_or_else(|| unknown(key))?;
         let v = p.kind.parse(p.key, raw)?;
         (p.set)(self, &v);
@@ -935,6 +943,9 @@ impl Config {
     }
 }
 
+/// The key that names a preset in [`Config::set`], URLs and `--preset`.
+pub const PRESET: &str = "preset";
+
 fn unknown(key: &str) -> ConfigError {
     ConfigError {
         field: "parameter",
@@ -955,7 +966,11 @@ pub fn from_params<'a>(
 ) -> (Config, Vec<ConfigError>) {
     let mut cfg = Config::default();
     let mut errors = Vec::new();
-    for (key, raw) in pairs {
+    // A preset goes first wherever it appears, so that the other pairs
+    // override it as flags after `--preset` do.
+    let (presets, fields): (Vec<_>, Vec<_>) =
+        pairs.into_iter().partition(|&(key, _)| key == PRESET);
+    for (key, raw) in presets.into_iter().chain(fields) {
         if let Err(e) = cfg.set(key, raw) {
             errors.push(e);
         }
@@ -985,6 +1000,21 @@ pub struct Schema {
     pub searchers: Vec<SearcherSummary>,
     /// Limits of a batch of trials.
     pub trials: ParamInfo,
+    /// The named presets.
+    pub presets: Vec<PresetInfo>,
+    /// The key that sets a preset ([`PRESET`]).
+    pub preset_key: &'static str,
+}
+
+/// A preset as data.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PresetInfo {
+    /// Its name.
+    pub name: &'static str,
+    /// One line of help.
+    pub help: &'static str,
+    /// The `(key, text)` values it sets.
+    pub edits: &'static [(&'static str, &'static str)],
 }
 
 /// One parameter as data.
@@ -1085,6 +1115,15 @@ pub fn schema() -> Schema {
             })
             .collect(),
         trials: ParamInfo::of(&TRIALS),
+        presets: Preset::ALL
+            .iter()
+            .map(|&p| PresetInfo {
+                name: p.name(),
+                help: p.help(),
+                edits: p.edits(),
+            })
+            .collect(),
+        preset_key: PRESET,
     }
 }
 

@@ -73,6 +73,15 @@ impl Preset {
         })
     }
 
+    /// The preset whose every value `cfg` has, if any.
+    pub fn matching(cfg: &Config) -> Option<Preset> {
+        Preset::ALL.iter().copied().find(|p| {
+            p.edits()
+                .iter()
+                .all(|(key, value)| cfg.get(key).is_ok_and(|v| v == *value))
+        })
+    }
+
     /// Sets this preset's values in `cfg`; other fields are kept.
     pub fn apply(self, cfg: &mut Config) {
         for (key, value) in self.edits() {
@@ -96,6 +105,21 @@ mod tests {
                 assert_eq!(&cfg.get(key).unwrap(), value, "{p}: {key}");
             }
         }
+    }
+
+    #[test]
+    fn a_preset_is_a_key_like_any_other() {
+        // Wherever it appears, a preset applies first and the rest override it.
+        let (cfg, errors) = crate::config::from_params([("c", "3"), ("preset", "paper-code")]);
+        assert!(errors.is_empty(), "{errors:?}");
+        assert_eq!((cfg.c, cfg.variant.name()), (3.0, "code"));
+        assert_eq!(Preset::matching(&cfg), None, "c = 3 is not the preset's");
+        let mut cfg = Config::default();
+        assert_eq!(Preset::matching(&cfg), None);
+        cfg.set("preset", "paper-text").unwrap();
+        assert_eq!(Preset::matching(&cfg), Some(Preset::PaperText));
+        let e = cfg.set("preset", "none").unwrap_err();
+        assert_eq!((e.field, e.value.as_str()), ("preset", "none"));
     }
 
     #[test]

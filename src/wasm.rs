@@ -157,6 +157,16 @@ pub fn set_param(config: JsValue, key: &str, raw: &str) -> Result<JsValue, JsErr
     to_js(&cfg)
 }
 
+/// The name of the preset whose every value `config` has, or null.
+///
+/// # Errors
+/// When `config` is not a valid configuration.
+#[wasm_bindgen(js_name = presetOf)]
+pub fn preset_of(config: JsValue) -> Result<Option<String>, JsError> {
+    let cfg = config_from_js(config)?;
+    Ok(crate::preset::Preset::matching(&cfg).map(|p| p.name().to_string()))
+}
+
 /// `[key, text]` pairs for a URL: every parameter with `full`, else the
 /// ones that differ from the default, and the seed.
 #[wasm_bindgen(js_name = configParams)]

@@ -57,7 +57,7 @@ async function boot() {
 
   function sync() {
     const text = new Map(engine.configParams(app.config, true));
-    controls.sync({ config: app.config, text, view: app.view, applicable: new Set(engine.applicable(app.config)) });
+    controls.sync({ config: app.config, text, view: app.view, applicable: new Set(engine.applicable(app.config)), preset: engine.presetOf(app.config) ?? null });
   }
 
   /** The engine configs of the runs: the config, and the race opponent's. */

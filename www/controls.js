@@ -40,6 +40,12 @@ export class Controls {
       fillSelect($(key), this.params.get(key).choices.map((c) => [c, CHOICE_LABELS[key][c] ?? c]));
     }
     fillSelect($('race'), races.map((r) => [r.id, r.label]));
+    // 'custom' is shown, never sent: it means no preset has all its values.
+    fillSelect($('preset'), [['custom', 'custom (no preset)'], ...schema.presets.map((p) => [p.name, p.name])]);
+    $('preset').title = schema.presets.map((p) => `${p.name}: ${p.help}`).join('\n');
+    $('preset').addEventListener('change', (e) => {
+      if (e.target.value !== 'custom') onParam('preset', e.target.value);
+    });
     // Limits from the schema (the σ slider shows a narrower range, set in sync).
     for (const key of ['n', 'rv', 'loops', 'ms', 'c', 'mu']) {
       const p = this.params.get(key);
@@ -83,10 +89,12 @@ export class Controls {
 
   /**
    * Shows `config` (with its parameters as text, as the engine writes
-   * them), the view parameters, and which parameters apply.
+   * them), the view parameters, which parameters apply, and the preset
+   * whose values the config has (or null).
    */
-  sync({ config, text, view, applicable }) {
+  sync({ config, text, view, applicable, preset }) {
     this.text = text;
+    $('preset').value = preset ?? 'custom';
     for (const key of PARAM_CONTROLS) {
       let v = text.get(key);
       if (key === 'ms' && v === '0') v = '';

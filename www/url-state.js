@@ -75,7 +75,7 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
       if (v === undefined) {
         messages.push(`Invalid ${key}=${JSON.stringify(shown(raw))}: allowed ${specs[key].help}. Using the default ${key}=${specs[key].text(specs[key].def) || '(none)'}.`);
       } else view[key] = v;
-    } else if (known.has(key)) pairs.push([key, raw]);
+    } else if (known.has(key) || key === schema.preset_key) pairs.push([key, raw]);
     else messages.push(`Unknown URL parameter ${JSON.stringify(shown(key))} ignored.`);
   }
   const { config, errors } = engine.parseParams(pairs);

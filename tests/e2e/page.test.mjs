@@ -346,6 +346,24 @@ test('export JSON then import replays the episode exactly', { timeout: 180_000 }
   });
 });
 
+test('preset= in the URL and the preset control set every value of a reading of the paper', { timeout: 120_000 }, async () => {
+  await withApp('?preset=paper-code&autoplay=0', async (page) => {
+    const cfg = await page.evaluate(() => window.torusTest.runs()[0].config);
+    assert.deepEqual([cfg.variant, cfg.c, cfg.final, cfg.belief, cfg.step_cap], ['code', 2, 'uct', 'prior', 10000]);
+    assert.equal(await page.locator('#preset').inputValue(), 'paper-code');
+    // Any other change leaves the preset; choosing one sets it again.
+    await page.selectOption('#final', 'visits');
+    await page.waitForFunction(() => document.getElementById('preset').value === 'custom');
+    await page.selectOption('#preset', 'paper-text');
+    await page.waitForFunction(() => window.torusTest.runs()[0]?.config.variant === 'cells' && window.torusTest.runs()[0].config.c === Math.SQRT2);
+    assert.equal(await page.locator('#preset').inputValue(), 'paper-text');
+  });
+  await withApp('?preset=paper&c=3', async (page) => {
+    assert.match(await text(page, '#message'), /Invalid preset="paper": allowed one of paper-text, paper-code\./);
+    assert.equal(await page.evaluate(() => window.torusTest.runs()[0].config.c), 3);
+  });
+});
+
 test('bad URL values show a message naming the parameter, and the page still runs', { timeout: 120_000 }, async () => {
   await withApp('?n=abc&sigma=-1&rv=x&start=99,99&searcher=foo&loops=0&c=nan&mu=5&final=z&seed=-3&speed=fast&autoplay=maybe&bogus=1', async (page) => {
     const msg = await text(page, '#message');
