@@ -10,6 +10,7 @@ mod named;
 pub mod batch;
 pub mod belief;
 pub mod bench;
+pub mod bound;
 pub mod budget;
 pub mod config;
 pub mod episode;
