@@ -25,12 +25,17 @@ pub fn run_trials(cfg: &Config, first: u64, count: u64) -> Result<Vec<TrialResul
     (first..first + count).map(|i| trial(cfg, i)).collect()
 }
 
-/// What a batch reports: the summary's fields, then how it ran.
+/// What a batch reports: the summary's fields, the bound, then how it ran.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Report<'a> {
     /// The statistics.
     #[serde(flatten)]
     pub summary: &'a Summary,
+    /// The lower bound on the mean steps of any searcher for this prior, N,
+    /// r_v, start and step cap ([`crate::bound::lower_bound_capped`]).
+    pub lower_bound: f64,
+    /// Mean steps ÷ the lower bound (`None` when the bound is 0).
+    pub mean_over_bound: Option<f64>,
     /// Wall-clock seconds.
     pub seconds: f64,
     /// Threads or workers used (results do not depend on it).

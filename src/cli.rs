@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 use torus_search::batch;
+use torus_search::bound;
 use torus_search::config::{self, Config, ConfigError, Kind, PARAMS, TRIALS};
 use torus_search::episode::{Episode, TrialResult};
 use torus_search::mcts::Variant;
@@ -247,9 +248,13 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
     bar.finish_and_clear();
     let seconds = t0.elapsed().as_secs_f64();
     let s = Summary::of(&results);
+    let lower_bound = bound::lower_bound_capped(&cfg).map_err(usage)?;
+    let mean_over_bound = (lower_bound > 0.0).then(|| s.steps.mean / lower_bound);
     if m.get_flag("json") {
         let report = batch::Report {
             summary: &s,
+            lower_bound,
+            mean_over_bound,
             seconds,
             threads,
             seed: cfg.seed,
@@ -260,12 +265,12 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
             serde_json::to_string(&report).expect("a report serialises")
         );
     } else {
-        print_table(&cfg, &s, seconds, threads);
+        print_table(&cfg, &s, lower_bound, seconds, threads);
     }
     Ok(())
 }
 
-fn print_table(cfg: &Config, s: &Summary, seconds: f64, threads: usize) {
+fn print_table(cfg: &Config, s: &Summary, lower_bound: f64, seconds: f64, threads: usize) {
     let mut who = cfg.searcher.name().to_string();
     if cfg.searcher.info().deliberates {
         let budget = cfg
@@ -291,6 +296,17 @@ fn print_table(cfg: &Config, s: &Summary, seconds: f64, threads: usize) {
     out!("{:<28}{}", "trials", s.trials);
     out!("{:<28}{}", "mean steps   [95% CI]", ci(&s.steps));
     out!("{:<28}{}", "mean optimal [95% CI]", ci(&s.optimal));
+    // The bound is on the mean over the prior, not on any one trial.
+    out!(
+        "{:<28}{:>10.3}   (mean steps / bound {})",
+        "lower bound (any searcher)",
+        lower_bound,
+        if lower_bound > 0.0 {
+            format!("{:.3}", s.steps.mean / lower_bound)
+        } else {
+            "–".into()
+        }
+    );
     out!("{:<28}{}", "ASOO = mean(steps-opt)", ci(&s.asoo));
     out!("{:<28}{}", "mean steps/opt", ci(&s.ratio));
     out!(

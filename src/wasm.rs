@@ -360,7 +360,11 @@ impl Race {
     }
 
     /// What stays fixed for each run: `[{ label, config, searcher, deliberates,
-    /// help, n, start, target, optimal }]`.
+    /// help, n, start, target, optimal, lower_bound }]`; `lower_bound` is
+    /// the bound on any searcher's mean steps (`bound::lower_bound_capped`).
+    ///
+    /// # Errors
+    /// None in practice: every run's config was validated by the constructor.
     pub fn describe(&self) -> Result<JsValue, JsError> {
         #[derive(serde::Serialize)]
         struct Run<'a> {
@@ -373,6 +377,7 @@ impl Race {
             start: u32,
             target: u32,
             optimal: u32,
+            lower_bound: f64,
         }
         let runs: Vec<Run> = self
             .race
@@ -380,7 +385,7 @@ impl Race {
             .iter()
             .map(|r| {
                 let info = r.searcher_info();
-                Run {
+                Ok(Run {
                     label: r.config().label(),
                     config: r.config(),
                     searcher: info.name,
@@ -390,9 +395,10 @@ impl Race {
                     start: r.start(),
                     target: r.target(),
                     optimal: r.optimal(),
-                }
+                    lower_bound: crate::bound::lower_bound_capped(r.config()).map_err(err)?,
+                })
             })
-            .collect();
+            .collect::<Result<_, JsError>>()?;
         to_js(&runs)
     }
 

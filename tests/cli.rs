@@ -162,6 +162,8 @@ fn json_has_every_field_and_is_consistent() {
         "rollouts",
         "rollout_steps",
         "truncated_rollouts",
+        "lower_bound",
+        "mean_over_bound",
         "seconds",
         "seed",
         "config",
@@ -184,6 +186,41 @@ fn json_has_every_field_and_is_consistent() {
     assert!(ci[0].as_f64().unwrap() <= ms && ms <= ci[1].as_f64().unwrap());
     let q = |k: &str| v[k].as_f64().unwrap();
     assert!(q("q1_steps") <= q("median_steps") && q("median_steps") <= q("q3_steps"));
+    assert!((q("mean_over_bound") - ms / q("lower_bound")).abs() < 1e-12);
+}
+
+#[test]
+fn run_reports_the_lower_bound() {
+    // The paper's delta target at N = 40 from (1,1): 39 moves, which no
+    // searcher beats; a uniform prior's bound is about N²/6 (265.5).
+    let v = json(&[
+        "run",
+        "--sigma",
+        "0",
+        "--searcher",
+        "rw",
+        "--trials",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(v["lower_bound"], 39.0);
+    let v = json(&[
+        "run",
+        "--prior",
+        "uniform",
+        "--searcher",
+        "rw",
+        "--trials",
+        "2",
+        "--json",
+    ]);
+    let lb = v["lower_bound"].as_f64().unwrap();
+    assert!((lb - 265.50125).abs() < 1e-9, "{lb}");
+    let table = String::from_utf8(cli(&["run", "--sigma", "0", "--trials", "2"]).stdout).unwrap();
+    assert!(
+        table.contains("lower bound (any searcher)      39.000"),
+        "{table}"
+    );
 }
 
 #[test]

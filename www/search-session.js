@@ -7,7 +7,7 @@
 export class RunView {
   /** @param {object} info one entry of the engine's Race.describe() */
   constructor(info) {
-    // label, config, searcher, deliberates, help, n, start, target, optimal
+    // label, config, searcher, deliberates, help, n, start, target, optimal, lower_bound
     Object.assign(this, info);
     this.frame = {
       status: 'running',

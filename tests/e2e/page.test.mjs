@@ -351,6 +351,8 @@ test('preset= in the URL and the preset control set every value of a reading of 
     const cfg = await page.evaluate(() => window.torusTest.runs()[0].config);
     assert.deepEqual([cfg.variant, cfg.c, cfg.final, cfg.belief, cfg.step_cap], ['code', 2, 'uct', 'prior', 10000]);
     assert.equal(await page.locator('#preset').inputValue(), 'paper-code');
+    // The bound on any searcher's mean steps for σ = 5 at N = 40 (the core's bound module).
+    await expectText(page, '#lower-bound', '78.2');
     // Any other change leaves the preset; choosing one sets it again.
     await page.selectOption('#final', 'visits');
     await page.waitForFunction(() => document.getElementById('preset').value === 'custom');

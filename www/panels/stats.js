@@ -22,6 +22,7 @@ export function updateStats(runs, meter, { reveal }) {
   setText('steps', fmtInt(f.steps));
   setText('optimal', known ? String(run.optimal) : '?');
   setText('ratio', f.status === 'found' && f.ratio === null ? '— (optimal 0)' : fmtRatio(f.ratio));
+  setText('lower-bound', run.lower_bound.toFixed(1));
   const cfg = run.config;
   const budget = cfg.ms !== null ? `${cfg.ms} ms` : fmtInt(cfg.loops);
   setText('decision-loops', run.deliberates ? `${fmtInt(f.loops_done)} / ${budget}` : '—');
