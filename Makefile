@@ -15,7 +15,7 @@ WASM := --target wasm32-unknown-unknown
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
-.PHONY: help setup setup-browser build serve test bench dist clean \
+.PHONY: help setup setup-browser build serve test bench dist clean figures \
         _build _dist test-fmt test-clippy test-native test-wasm test-e2e
 
 help:
@@ -25,6 +25,7 @@ help:
 	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
+	@echo "make figures every experiment's figure into docs/figures/ (about 20 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
 setup:
@@ -94,6 +95,10 @@ bench: setup
 	  printf '\n==== %s ====\n' "browser benchmark (tests/e2e/bench.mjs)" && \
 	  node tests/e2e/bench.mjs --native; \
 	fi
+
+figures:
+	$(call section,experiment figures into docs/figures (scripts/figures.sh))
+	@scripts/figures.sh
 
 clean:
 	rm -rf www/pkg www/vendor dist target/e2e

@@ -14,6 +14,7 @@ pub mod bound;
 pub mod budget;
 pub mod config;
 pub mod episode;
+pub mod experiment;
 pub mod lattice;
 pub mod mcts;
 pub mod preset;
