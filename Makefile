@@ -12,6 +12,8 @@ export WASM_BINDGEN_TEST_TIMEOUT ?= 120
 # In CI, Cargo.lock must already be up to date.
 LOCKED := $(if $(filter true 1,$(CI)),--locked,)
 WASM := --target wasm32-unknown-unknown
+# Trials per point of the experiments benchmark (sigma-sweep; the README's figure is at 100).
+BENCH_EXP_TRIALS ?= 100
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
@@ -94,6 +96,8 @@ bench: setup
 	  printf '\n==== %s ====\n' "browser benchmark (tests/e2e/bench.mjs)" && \
 	  node tests/e2e/bench.mjs --native; \
 	fi
+	$(call section,experiments: CLI vs page worker pool (benches/experiments.mjs))
+	node benches/experiments.mjs --exp sigma-sweep --trials $(BENCH_EXP_TRIALS) --threads 2
 
 clean:
 	rm -rf www/pkg www/vendor dist target/e2e
