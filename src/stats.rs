@@ -103,6 +103,58 @@ pub fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
 }
 
+/// Quartiles, Tukey whiskers and range of a sample: what a box plot draws.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct BoxStats {
+    /// The median.
+    pub median: f64,
+    /// First quartile.
+    pub q1: f64,
+    /// Third quartile.
+    pub q3: f64,
+    /// The smallest value at or above q1 − 1.5 IQR.
+    pub whisker_low: f64,
+    /// The largest value at or below q3 + 1.5 IQR.
+    pub whisker_high: f64,
+    /// Smallest value.
+    pub min: f64,
+    /// Largest value.
+    pub max: f64,
+}
+
+impl BoxStats {
+    /// Summarises `sorted` (ascending, no NaN); every field is NaN when it is empty.
+    pub fn of_sorted(sorted: &[f64]) -> BoxStats {
+        let (Some(&min), Some(&max)) = (sorted.first(), sorted.last()) else {
+            return BoxStats {
+                median: f64::NAN,
+                q1: f64::NAN,
+                q3: f64::NAN,
+                whisker_low: f64::NAN,
+                whisker_high: f64::NAN,
+                min: f64::NAN,
+                max: f64::NAN,
+            };
+        };
+        let q1 = quantile(sorted, 0.25);
+        let q3 = quantile(sorted, 0.75);
+        let iqr = q3 - q1;
+        // Tukey's fences, with the whiskers drawn to the data inside them
+        // (q1 and q3 lie between data points, so the whiskers always exist).
+        let lo = sorted.partition_point(|&x| x < q1 - 1.5 * iqr);
+        let hi = sorted.partition_point(|&x| x <= q3 + 1.5 * iqr);
+        BoxStats {
+            median: quantile(sorted, 0.5),
+            q1,
+            q3,
+            whisker_low: sorted[lo.min(sorted.len() - 1)],
+            whisker_high: sorted[hi.max(1) - 1],
+            min,
+            max,
+        }
+    }
+}
+
 /// Everything reported over a batch of trials. It serialises flat, with
 /// the field names the CLI's `--json` and the page's batch panel use:
 /// `trials, mean_steps, ci95_steps, mean_optimal, ci95_optimal, asoo,
@@ -237,5 +289,25 @@ mod tests {
         let s = [1.0, 2.0, 3.0, 4.0];
         assert_eq!(quantile(&s, 0.5), 2.5);
         assert_eq!(quantile(&s, 0.25), 1.75);
+    }
+
+    #[test]
+    fn box_stats_whiskers_stop_at_the_fences() {
+        // q1 = 2, q3 = 4 (type 7 on 9 values), IQR 2: fences -1 and 7, so
+        // the whiskers end at the last data inside them (1 and 5), not at
+        // the outlier 50. Whiskers drawn to min/max (a plausible bug) give
+        // 50 and fail.
+        let mut xs = vec![1.0, 2.0, 2.0, 3.0, 3.0, 3.0, 4.0, 5.0, 50.0];
+        xs.sort_by(f64::total_cmp);
+        let b = BoxStats::of_sorted(&xs);
+        assert_eq!((b.q1, b.median, b.q3), (2.0, 3.0, 4.0));
+        assert_eq!((b.whisker_low, b.whisker_high), (1.0, 5.0));
+        assert_eq!((b.min, b.max), (1.0, 50.0));
+        let one = BoxStats::of_sorted(&[7.0]);
+        assert_eq!(
+            (one.whisker_low, one.median, one.whisker_high),
+            (7.0, 7.0, 7.0)
+        );
+        assert!(BoxStats::of_sorted(&[]).median.is_nan());
     }
 }

@@ -10,6 +10,7 @@
 
 use crate::config::{self, Config};
 use crate::episode::{Episode, TrialResult, TRIAL_FIELDS};
+use crate::experiment::{self, Plan, ResultSet, Spec};
 use crate::prior;
 use crate::race::Race as CoreRace;
 use crate::render::{Alpha, Colorizer, Palette, ScaleKind};
@@ -281,6 +282,78 @@ pub fn summarize_trials(flat: &[f64]) -> Result<JsValue, JsError> {
             flat.len()
         ))),
     }
+}
+
+/// Every named experiment: `[{ name, title, help, kind, defaultTrials }]`.
+#[wasm_bindgen(js_name = experimentList)]
+pub fn experiment_list() -> Result<JsValue, JsError> {
+    to_js(&experiment::list())
+}
+
+/// Reads and plans an experiment spec object (strictly: unknown fields are errors).
+fn plan_from_js(spec: JsValue) -> Result<Plan, JsError> {
+    let v: serde_json::Value = from_js(spec, "experiment spec")?;
+    Plan::new(&Spec::from_value(&v).map_err(err)?).map_err(err)
+}
+
+/// A unit number from JS: an integer in 0..=2^53.
+fn unit_from_js(v: f64, what: &str) -> Result<u64, JsError> {
+    if v >= 0.0 && v.fract() == 0.0 && v <= experiment::MAX_UNITS as f64 {
+        Ok(v as u64)
+    } else {
+        Err(JsError::new(&format!(
+            "{what} must be an integer in 0..=2^53, got {v}"
+        )))
+    }
+}
+
+/// The plan of `spec`: `{ spec (normalised), experiment (header), points:
+/// [{ index, series, x, config }], totalUnits, rowFields }`.
+#[wasm_bindgen(js_name = experimentPlan)]
+pub fn experiment_plan(spec: JsValue) -> Result<JsValue, JsError> {
+    to_js(&plan_from_js(spec)?.summary())
+}
+
+/// Runs units `from..to` of `spec` and returns their rows flattened, each
+/// `rowFields.length` numbers in `experiment::ROW_FIELDS` order (point,
+/// trial, steps, optimal, found, target, value). Units depend only on
+/// (spec, unit), so any split over Web Workers gives the CLI's rows.
+#[wasm_bindgen(js_name = experimentRun)]
+pub fn experiment_run(spec: JsValue, from: f64, to: f64) -> Result<Vec<f64>, JsError> {
+    let plan = plan_from_js(spec)?;
+    let rows = experiment::run_units_clocked(
+        &plan,
+        unit_from_js(from, "from")?,
+        unit_from_js(to, "to")?,
+        Some(performance_now),
+    )
+    .map_err(err)?;
+    Ok(rows.iter().flat_map(|r| r.fields()).collect())
+}
+
+/// The result JSON text of `spec` with the rows given (flattened, any order,
+/// any subset: a partial set gives partial statistics). With every row it is
+/// byte for byte the CLI's `<name>.json`.
+#[wasm_bindgen(js_name = experimentResult)]
+pub fn experiment_result(spec: JsValue, rows: &[f64]) -> Result<String, JsError> {
+    let plan = plan_from_js(spec)?;
+    Ok(ResultSet::from_flat(plan, rows).map_err(err)?.to_json())
+}
+
+/// The per-point CSV of a result JSON text.
+#[wasm_bindgen(js_name = experimentCsv)]
+pub fn experiment_csv(result: &str) -> Result<String, JsError> {
+    Ok(experiment::read(result).map_err(err)?.csv())
+}
+
+/// Reads and checks a result JSON text (the page's or the CLI's) and returns
+/// it as an object; a foreign or damaged file is an error saying what is wrong.
+#[wasm_bindgen(js_name = experimentRead)]
+pub fn experiment_read(text: &str) -> Result<JsValue, JsError> {
+    let set = experiment::read(text).map_err(err)?;
+    let value: serde_json::Value =
+        serde_json::from_str(&set.to_json()).map_err(|e| JsError::new(&e.to_string()))?;
+    to_js(&value)
 }
 
 /// Benchmark workload (timed by the caller): rollouts of `policy` between

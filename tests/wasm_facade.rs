@@ -322,3 +322,52 @@ fn palettes_colours_and_paint() {
     );
     assert!(facade::decode_paint(&text, 11).is_err());
 }
+
+#[wasm_bindgen_test]
+fn experiments_run_split_and_match_the_core() {
+    use torus_search::experiment::{self as core, Plan, ResultSet};
+    let list = js_sys::Array::from(&facade::experiment_list().map_err(JsValue::from).unwrap());
+    assert_eq!(list.length() as usize, core::DEFINITIONS.len());
+    assert_eq!(num(&list.get(0), "defaultTrials"), 10_000.0);
+    let spec = r#"{"name":"custom","trials":3,"seed":"5","params":{"n":"8","loops":"4","step_cap":"60"},
+      "sweep":{"key":"searcher","values":["mcts","nsarw"]}}"#;
+    let plan = facade::experiment_plan(js(spec))
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(num(&plan, "totalUnits"), 6.0);
+    assert_eq!(js_sys::Array::from(&get(&plan, "rowFields")).length(), 7);
+    let points = js_sys::Array::from(&get(&plan, "points"));
+    assert_eq!(get(&points.get(1), "x").as_string().unwrap(), "nsarw");
+    // Two workers' halves, joined in reverse, give the core's single run.
+    let a = facade::experiment_run(js(spec), 0.0, 4.0)
+        .map_err(JsValue::from)
+        .unwrap();
+    let b = facade::experiment_run(js(spec), 4.0, 6.0)
+        .map_err(JsValue::from)
+        .unwrap();
+    let rows: Vec<f64> = b.iter().chain(&a).copied().collect();
+    let text = facade::experiment_result(js(spec), &rows)
+        .map_err(JsValue::from)
+        .unwrap();
+    let p = Plan::from_spec_text(spec).unwrap();
+    let core_rows = core::run_units(&p, 0, 6).unwrap();
+    assert_eq!(text, ResultSet::new(p, 0, 6, core_rows).unwrap().to_json());
+    let csv = facade::experiment_csv(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(csv.lines().count(), 3);
+    let read = facade::experiment_read(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(js_sys::Array::from(&get(&read, "rows")).length(), 6);
+    // Bad input is an error with a message, never a panic.
+    let e = facade::experiment_plan(js(r#"{"name":"nope"}"#)).unwrap_err();
+    assert!(message(e).starts_with("experiment must be one of priors"));
+    let e = facade::experiment_plan(js(r#"{"name":"delta","x":1}"#)).unwrap_err();
+    assert!(message(e).contains("unknown field \"x\""));
+    assert!(facade::experiment_run(js(spec), 0.0, 7.0).is_err());
+    assert!(facade::experiment_run(js(spec), 0.5, 1.0).is_err());
+    assert!(facade::experiment_result(js(spec), &[1.0, 2.0]).is_err());
+    let e = facade::experiment_read("{\"format\":\"x\"}").unwrap_err();
+    assert!(message(e).starts_with("not a torus-search experiment result"));
+}

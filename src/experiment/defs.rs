@@ -1,0 +1,488 @@
+//! The named experiments: what each varies, which series it compares, and
+//! the parameter values it starts from.
+//!
+//! Every experiment starts from the paper's setting ([`COMMON_DEFAULTS`]:
+//! N = 40, r_v = 1, start (1,1), L = 100) after the spec's preset, then sets
+//! its own defaults; the spec's params, the series and the x value follow
+//! (see `plan.rs`). "Every searcher" is MCTS with RW rollouts, MCTS with
+//! Lévy rollouts, then every other searcher of the registry, so a searcher
+//! added later appears in those experiments without a change here.
+
+use crate::mcts::Variant;
+use crate::named::named_enum;
+use crate::searchers::REGISTRY;
+
+named_enum! {
+    /// What a unit of an experiment does.
+    pub enum Kind {
+        /// Runs one episode (a trial) to detection or the step cap.
+        Episodes = "episodes",
+        /// Draws one target from the point's prior.
+        Targets = "targets",
+    }
+}
+
+named_enum! {
+    /// The number a row reports as its value.
+    pub enum Metric {
+        /// Real moves until detection (the cap for a capped trial).
+        Steps = "steps",
+        /// Steps minus the optimal number of steps.
+        Excess = "excess",
+        /// The target's torus ℓ1 distance from the prior's centre cell.
+        Distance = "distance",
+    }
+}
+
+named_enum! {
+    /// How the results are drawn.
+    pub enum Chart {
+        /// Box plots per x value (or per series when there is one x value).
+        Box = "box",
+        /// Mean lines with 95% CI bands against a numeric x.
+        Line = "line",
+        /// One histogram heat map per point.
+        Heatmap = "heatmap",
+    }
+}
+
+/// Values every experiment starts from (after the preset): the paper's setting.
+pub const COMMON_DEFAULTS: &[(&str, &str)] =
+    &[("n", "40"), ("rv", "1"), ("start", "1,1"), ("loops", "100")];
+
+/// The x axis of a named experiment.
+pub struct XDef {
+    /// The swept parameter.
+    pub key: &'static str,
+    /// The axis label.
+    pub label: &'static str,
+    /// The values, as parameter text.
+    pub values: &'static [&'static str],
+    /// Drawn on a log scale.
+    pub log: bool,
+}
+
+/// Published values drawn beside the results.
+pub struct ReferenceDef {
+    /// What they are.
+    pub label: &'static str,
+    /// The x values (parameter text), one per y value.
+    pub x: &'static [&'static str],
+    /// The values, in the experiment's metric.
+    pub y: &'static [f64],
+}
+
+/// One series: its label and the parameter values that make it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SeriesDef {
+    /// The label.
+    pub label: String,
+    /// Parameter values (schema text).
+    pub params: Vec<(&'static str, String)>,
+}
+
+/// A named experiment.
+pub struct Definition {
+    /// The name (CLI argument, file name, spec name).
+    pub name: &'static str,
+    /// A title for charts.
+    pub title: &'static str,
+    /// What it shows, in a sentence or two.
+    pub help: &'static str,
+    /// Episodes or target samples.
+    pub kind: Kind,
+    /// The value each row reports.
+    pub metric: Metric,
+    /// How it is drawn.
+    pub chart: Chart,
+    /// Trials (samples) per point unless the spec says otherwise.
+    pub default_trials: u64,
+    /// Parameter values after [`COMMON_DEFAULTS`], before the spec's params.
+    pub defaults: &'static [(&'static str, &'static str)],
+    /// The swept parameter; `None` for one x value.
+    pub x: Option<XDef>,
+    /// The series compared.
+    pub series: fn() -> Vec<SeriesDef>,
+    /// A log y axis fits.
+    pub y_log: bool,
+    /// Published values drawn beside the results.
+    pub references: &'static [ReferenceDef],
+    /// A caveat shown with the results.
+    pub note: Option<&'static str>,
+}
+
+impl Definition {
+    /// True for `custom`, whose sweep and series come from the spec.
+    pub fn is_custom(&self) -> bool {
+        self.name == "custom"
+    }
+}
+
+fn mcts(rollout: &str, label: &str) -> SeriesDef {
+    SeriesDef {
+        label: label.to_string(),
+        params: vec![("searcher", "mcts".into()), ("rollout", rollout.into())],
+    }
+}
+
+fn mcts_rw() -> SeriesDef {
+    mcts("rw", "MCTS, RW rollouts")
+}
+
+fn mcts_levy() -> SeriesDef {
+    mcts("levy", "MCTS, Lévy rollouts")
+}
+
+fn searcher(name: &str) -> Option<SeriesDef> {
+    REGISTRY.iter().find(|s| s.name == name).map(|s| SeriesDef {
+        label: s.label.to_string(),
+        params: vec![("searcher", s.name.to_string())],
+    })
+}
+
+/// MCTS with RW and with Lévy rollouts, then every other registered
+/// searcher (entries named `test-…` exist only in unit tests and are left out).
+pub fn every_searcher() -> Vec<SeriesDef> {
+    let mut v = vec![mcts_rw(), mcts_levy()];
+    v.extend(
+        REGISTRY
+            .iter()
+            .filter(|s| s.name != crate::mcts::INFO.name && !s.name.starts_with("test-"))
+            .filter_map(|s| searcher(s.name)),
+    );
+    v
+}
+
+fn mcts_both() -> Vec<SeriesDef> {
+    vec![mcts_rw(), mcts_levy()]
+}
+
+fn mcts_and_nsarw() -> Vec<SeriesDef> {
+    vec![mcts_rw()]
+        .into_iter()
+        .chain(searcher("nsarw"))
+        .collect()
+}
+
+fn each_variant() -> Vec<SeriesDef> {
+    Variant::ALL
+        .iter()
+        .map(|v| SeriesDef {
+            label: format!("MCTS {v}"),
+            params: vec![
+                ("searcher", "mcts".into()),
+                ("variant", v.name().into()),
+                ("rollout", "rw".into()),
+            ],
+        })
+        .collect()
+}
+
+fn beliefs() -> Vec<SeriesDef> {
+    crate::belief::Belief::ALL
+        .iter()
+        .map(|b| SeriesDef {
+            label: format!("MCTS, practice targets from the {b}"),
+            params: vec![
+                ("searcher", "mcts".into()),
+                ("rollout", "rw".into()),
+                ("belief", b.name().into()),
+            ],
+        })
+        .collect()
+}
+
+fn levy_searchers() -> Vec<SeriesDef> {
+    searcher("levy").into_iter().collect()
+}
+
+fn targets() -> Vec<SeriesDef> {
+    vec![SeriesDef {
+        label: "sampled targets".into(),
+        params: vec![],
+    }]
+}
+
+fn none() -> Vec<SeriesDef> {
+    Vec::new()
+}
+
+const SIGMA_LABEL: &str = "σ (standard deviation of the target prior)";
+const LOOPS_LABEL: &str = "L (MCTS loops per move)";
+
+/// The note every time-budget experiment carries.
+pub const TIMING_NOTE: &str = "decision time is measured on the running machine: results depend on its speed and load, and are not reproducible bit for bit across machines or runs";
+
+/// Every named experiment, in the order the CLI and the page list them.
+pub static DEFINITIONS: &[Definition] = &[
+    Definition {
+        name: "priors",
+        title: "Sampled targets of the Gaussian prior",
+        help: "histograms of sampled targets for σ = 0, 2.5, 10 and ∞ (the paper's Gaussian histograms); trial i draws the target episode i would",
+        kind: Kind::Targets,
+        metric: Metric::Distance,
+        chart: Chart::Heatmap,
+        default_trials: 10_000,
+        defaults: &[("prior", "gaussian")],
+        x: Some(XDef {
+            key: "sigma",
+            label: SIGMA_LABEL,
+            values: &["0", "2.5", "10", "inf"],
+            log: false,
+        }),
+        series: targets,
+        y_log: false,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "sigma-sweep",
+        title: "Steps against the prior's σ",
+        help: "box plots of steps against σ = 0, 1, …, 10 for every searcher (the paper's Gaussian figure)",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Box,
+        default_trials: 100,
+        defaults: &[("prior", "gaussian")],
+        x: Some(XDef {
+            key: "sigma",
+            label: SIGMA_LABEL,
+            values: &["0", "1", "2", "3", "4", "5", "6", "7", "8", "9", "10"],
+            log: false,
+        }),
+        series: every_searcher,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "delta",
+        title: "A known target: steps of every searcher",
+        help: "a delta prior at the centre (a known target), every searcher: steps and excess steps with 95% CIs (the paper's delta figure)",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Box,
+        default_trials: 100,
+        defaults: &[("prior", "delta")],
+        x: None,
+        series: every_searcher,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "loops",
+        title: "Steps against MCTS loops per move (delta target)",
+        help: "L = 10 … 1600 loops per move, MCTS with RW and with Lévy rollouts, delta target (the paper's resource-limit figure, loops)",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("prior", "delta")],
+        x: Some(XDef {
+            key: "loops",
+            label: LOOPS_LABEL,
+            values: &["10", "20", "50", "100", "200", "400", "800", "1600"],
+            log: true,
+        }),
+        series: mcts_both,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "decision-time",
+        title: "Steps against decision time per move (delta target)",
+        help: "0.1 … 10 ms per move, MCTS with RW and with Lévy rollouts, delta target (the paper's resource-limit figure, time); timed: results depend on the machine",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("prior", "delta")],
+        x: Some(XDef {
+            key: "ms",
+            label: "decision time per move (ms)",
+            values: &["0.1", "0.2", "0.5", "1", "2", "5", "10"],
+            log: true,
+        }),
+        series: mcts_both,
+        y_log: true,
+        references: &[],
+        note: Some(TIMING_NOTE),
+    },
+    Definition {
+        name: "uniform",
+        title: "An unknown target: steps of every searcher",
+        help: "a uniform prior (an unknown target), every searcher (the paper's unknown-target figure)",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Box,
+        default_trials: 100,
+        defaults: &[("prior", "uniform")],
+        x: None,
+        series: every_searcher,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "nsarw-convergence",
+        title: "MCTS and NSARW against lattice size (uniform target)",
+        help: "mean steps of MCTS with RW rollouts and of NSARW against N = 10, 20, …, 100, uniform target, with 95% CIs (the paper's convergence figure)",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("prior", "uniform")],
+        x: Some(XDef {
+            key: "n",
+            label: "N (lattice side)",
+            values: &["10", "20", "30", "40", "50", "60", "70", "80", "90", "100"],
+            log: false,
+        }),
+        series: mcts_and_nsarw,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "known-n20",
+        title: "Excess steps against loops, N = 20, known target (3,3)",
+        help: "the authors' loops study (MCTSKnown_Hottovy.m): N = 20, target (3,3) known, start (11,11), r_v = 0, L = 100 … 3200, each MCTS variant, beside the authors' published means",
+        kind: Kind::Episodes,
+        metric: Metric::Excess,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("n", "20"), ("target", "3,3"), ("start", "11,11"), ("rv", "0")],
+        x: Some(XDef {
+            key: "loops",
+            label: LOOPS_LABEL,
+            values: &["100", "200", "400", "800", "1600", "3200"],
+            log: true,
+        }),
+        series: each_variant,
+        y_log: false,
+        references: &[ReferenceDef {
+            label: "authors' published means (PlotMCTsKnownN20.m)",
+            x: &["100", "200", "400", "800", "1600", "3200"],
+            y: &[19.21, 11.29, 6.54, 3.87, 2.03, 1.0],
+        }],
+        note: None,
+    },
+    Definition {
+        name: "belief",
+        title: "Practice targets from the prior or the posterior, across σ",
+        help: "MCTS with RW rollouts drawing practice targets from the prior (the paper) or from the posterior (searched cells removed), σ = 0 … ∞",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Box,
+        default_trials: 100,
+        defaults: &[("prior", "gaussian")],
+        x: Some(XDef {
+            key: "sigma",
+            label: SIGMA_LABEL,
+            values: &["0", "1", "2.5", "5", "10", "inf"],
+            log: false,
+        }),
+        series: beliefs,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "levy-mu",
+        title: "Lévy flight search against μ (uniform target)",
+        help: "steps of the Lévy flight searcher against μ in (1, 3], uniform target, to test the μ ≈ 2 optimum on this torus",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("prior", "uniform")],
+        x: Some(XDef {
+            key: "mu",
+            label: "Lévy exponent μ",
+            values: &["1.1", "1.25", "1.5", "1.75", "2", "2.25", "2.5", "2.75", "3"],
+            log: false,
+        }),
+        series: levy_searchers,
+        y_log: false,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "c-sweep",
+        title: "Steps against the exploration constant c (delta target)",
+        help: "MCTS with RW and with Lévy rollouts against the UCT constant c = 0.25 … 16, delta target",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[("prior", "delta")],
+        x: Some(XDef {
+            key: "c",
+            label: "UCT exploration constant c",
+            values: &["0.25", "0.5", "1", "1.4142135623730951", "2", "4", "8", "16"],
+            log: true,
+        }),
+        series: mcts_both,
+        y_log: true,
+        references: &[],
+        note: None,
+    },
+    Definition {
+        name: "custom",
+        title: "Custom experiment",
+        help: "a sweep of any parameter (spec sweep, --sweep KEY=V1,V2,…) across series (spec series, --series 'LABEL:key=v,…'); without series, one series of the base configuration",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Line,
+        default_trials: 100,
+        defaults: &[],
+        x: None,
+        series: none,
+        y_log: false,
+        references: &[],
+        note: None,
+    },
+];
+
+/// The names of every experiment.
+pub fn names() -> Vec<&'static str> {
+    DEFINITIONS.iter().map(|d| d.name).collect()
+}
+
+/// The experiment called `name`.
+pub fn find(name: &str) -> Option<&'static Definition> {
+    DEFINITIONS.iter().find(|d| d.name == name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_searcher_follows_the_registry() {
+        let all = every_searcher();
+        let labels: Vec<&str> = all.iter().map(|s| s.label.as_str()).collect();
+        assert_eq!(
+            labels,
+            [
+                "MCTS, RW rollouts",
+                "MCTS, Lévy rollouts",
+                "Random walk",
+                "Lévy flight",
+                "NSARW"
+            ]
+        );
+        // The unit tests' shuttle searcher is registered here but left out.
+        assert!(REGISTRY.iter().any(|s| s.name == "test-shuttle"));
+    }
+
+    #[test]
+    fn names_are_unique() {
+        let n = names();
+        for (i, a) in n.iter().enumerate() {
+            assert!(!n[..i].contains(a), "{a} twice");
+        }
+    }
+}
