@@ -1,4 +1,4 @@
-//! The native command line: `torus-search run` and `torus-search bench`.
+//! The native command line: `torus-search run`, `experiment`, `merge` and `bench`.
 //!
 //! `run`'s flags are built from the configuration schema
 //! (`config::PARAMS`): each parameter's flag, help, range and default come
@@ -14,7 +14,9 @@ use std::time::Instant;
 use torus_search::batch;
 use torus_search::config::{self, Config, ConfigError, Kind, PARAMS, TRIALS};
 use torus_search::episode::{Episode, TrialResult};
+use torus_search::experiment::{self, Plan, ResultSet, Shard, Spec, SpecError};
 use torus_search::mcts::Variant;
+use torus_search::preset::Preset;
 use torus_search::searchers::PolicyKind;
 use torus_search::stats::Summary;
 
@@ -54,12 +56,14 @@ fn command() -> Command {
         .subcommand_required(true)
         .arg_required_else_help(true)
         .subcommand(run_command())
+        .subcommand(experiment_command())
+        .subcommand(merge_command())
         .subcommand(bench_command())
 }
 
-fn run_command() -> Command {
-    let mut cmd = Command::new("run").about("Run trials and summarise them.");
-    for p in PARAMS {
+/// One flag per schema parameter (`skip` names keys a command handles itself).
+fn param_args(mut cmd: Command, skip: &[&str]) -> Command {
+    for p in PARAMS.iter().filter(|p| !skip.contains(&p.key)) {
         let default = match p.kind {
             Kind::Bool => "off".to_string(),
             _ if p.default.text().is_empty() => "none".to_string(),
@@ -82,7 +86,52 @@ fn run_command() -> Command {
         }
         cmd = cmd.arg(arg);
     }
-    cmd.arg(
+    cmd
+}
+
+fn preset_arg(default: &str) -> Arg {
+    Arg::new("preset")
+        .long("preset")
+        .value_name("PRESET")
+        .help(format!(
+        "a reading of the paper, applied before the other flags: {}; or none [default: {default}]",
+        Preset::ALL
+            .iter()
+            .map(|p| format!("{p} ({})", p.help()))
+            .collect::<Vec<_>>()
+            .join("; ")
+    ))
+}
+
+/// The preset named by `--preset`: `None` for `none`, `default` when absent.
+fn preset(m: &ArgMatches, default: Option<Preset>) -> Result<Option<Preset>, UsageError> {
+    match m.get_one::<String>("preset").map(String::as_str) {
+        None => Ok(default),
+        Some("none") => Ok(None),
+        Some(name) => Preset::parse(name).map(Some).ok_or_else(|| {
+            UsageError(format!(
+                "--preset must be one of {}, none, got {name}",
+                Preset::NAMES.join(", ")
+            ))
+        }),
+    }
+}
+
+fn threads_arg() -> Arg {
+    Arg::new("threads")
+        .long("threads")
+        .value_name("K")
+        .allow_hyphen_values(true)
+        .help("worker threads: an integer in 1..=1024 [default: all cores]; results do not depend on it")
+}
+
+fn run_command() -> Command {
+    param_args(
+        Command::new("run").about("Run trials and summarise them."),
+        &[],
+    )
+    .arg(preset_arg("none"))
+    .arg(
         Arg::new(TRIALS.key)
             .long(TRIALS.key)
             .value_name("COUNT")
@@ -94,13 +143,7 @@ fn run_command() -> Command {
                 TRIALS.default.text()
             )),
     )
-    .arg(
-        Arg::new("threads")
-            .long("threads")
-            .value_name("K")
-            .allow_hyphen_values(true)
-            .help("worker threads: an integer in 1..=1024 [default: all cores]; results do not depend on it"),
-    )
+    .arg(threads_arg())
     .arg(
         Arg::new("json")
             .long("json")
@@ -113,6 +156,90 @@ fn run_command() -> Command {
             .action(ArgAction::SetTrue)
             .help("print the resolved config as JSON and run nothing"),
     )
+}
+
+fn experiment_command() -> Command {
+    let names = experiment::DEFINITIONS
+        .iter()
+        .map(|d| d.name)
+        .collect::<Vec<_>>()
+        .join(", ");
+    let cmd = Command::new("experiment")
+        .about("Run a named experiment (a figure of the paper, or a custom sweep) and write DIR/<name>.json, .csv and .svg.")
+        .after_help("Every point keeps the seed: trial i of each point uses the same random streams. \
+With --shard i/n only DIR/<name>.shard-i-of-n.json is written; `torus-search merge` joins the shards \
+into the files a single run writes, byte for byte (docs/cluster.md). decision-time (and any --ms) \
+budgets decisions by the clock: those results depend on the machine and its load.")
+        .arg(
+            Arg::new("name")
+                .value_name("NAME")
+                .help(format!("the experiment: {names} (--list describes them)")),
+        )
+        .arg(
+            Arg::new("list")
+                .long("list")
+                .action(ArgAction::SetTrue)
+                .help("list the experiments with what each shows, and exit"),
+        )
+        .arg(
+            Arg::new(TRIALS.key)
+                .long(TRIALS.key)
+                .value_name("COUNT")
+                .allow_hyphen_values(true)
+                .help(format!(
+                    "trials (samples for priors) per point: {} [default: the experiment's, see --list]",
+                    TRIALS.kind.allowed()
+                )),
+        )
+        .arg(
+            Arg::new("out")
+                .long("out")
+                .value_name("DIR")
+                .help("directory for the files (created if missing) [default: .]"),
+        )
+        .arg(threads_arg())
+        .arg(preset_arg("paper-text"))
+        .arg(
+            Arg::new("shard")
+                .long("shard")
+                .value_name("I/N")
+                .allow_hyphen_values(true)
+                .help("run only shard I of N (1 <= I <= N; contiguous unit ranges) and write DIR/<name>.shard-I-of-N.json"),
+        )
+        .arg(
+            Arg::new("sweep")
+                .long("sweep")
+                .value_name("KEY=V1,V2,...")
+                .allow_hyphen_values(true)
+                .help("custom: sweep parameter KEY over the values (separate cell values with ';', as in target=3,3;5,5)"),
+        )
+        .arg(
+            Arg::new("series")
+                .long("series")
+                .value_name("LABEL:KEY=V,...")
+                .action(ArgAction::Append)
+                .allow_hyphen_values(true)
+                .help("custom: a series with its parameter values (repeat for more series)"),
+        );
+    param_args(cmd, &[])
+}
+
+fn merge_command() -> Command {
+    Command::new("merge")
+        .about("Join shard results of one experiment into DIR/<name>.json, .csv and .svg (exactly the single run's files).")
+        .arg(
+            Arg::new("files")
+                .value_name("FILE")
+                .num_args(1..)
+                .required(true)
+                .help("shard JSON files written by `experiment --shard`, in any order"),
+        )
+        .arg(
+            Arg::new("out")
+                .long("out")
+                .value_name("DIR")
+                .help("directory for the files (created if missing) [default: .]"),
+        )
 }
 
 fn bench_command() -> Command {
@@ -158,6 +285,9 @@ fn bench_command() -> Command {
 /// parameter, must apply to the resulting config, and the whole is validated.
 fn build_config(m: &ArgMatches) -> Result<Config, UsageError> {
     let mut cfg = Config::default();
+    if let Some(p) = preset(m, None)? {
+        p.apply(&mut cfg);
+    }
     let mut given = Vec::new();
     for p in PARAMS {
         let raw = match p.kind {
@@ -210,41 +340,11 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
     let trials = TRIALS
         .int_value(m.get_one::<String>(TRIALS.key).map(String::as_str))
         .map_err(usage)?;
-    let threads = int_flag(m, "threads", 1, 1024)?.map_or_else(
-        || std::thread::available_parallelism().map_or(1, |n| n.get()),
-        |t| t as usize,
-    );
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| UsageError(format!("cannot start {threads} threads: {e}")))?;
+    let (threads, pool) = thread_pool(m)?;
     let t0 = Instant::now();
-    // The bar appears only once a run has taken a second, so quick runs and
-    // pipelines stay quiet.
-    let bar = ProgressBar::with_draw_target(Some(trials), ProgressDrawTarget::hidden());
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} trials, eta {eta}")
-            .expect("static template")
-            .progress_chars("=> "),
-    );
-    let shown = AtomicBool::new(false);
-    let results: Vec<TrialResult> = pool.install(|| {
-        (0..trials)
-            .into_par_iter()
-            .map(|i| {
-                let r = batch::trial(&cfg, i).expect("the config was validated above");
-                if !shown.load(Ordering::Relaxed)
-                    && t0.elapsed().as_secs_f64() > 1.0
-                    && !shown.swap(true, Ordering::Relaxed)
-                {
-                    bar.set_draw_target(ProgressDrawTarget::stderr());
-                }
-                bar.inc(1);
-                r
-            })
-            .collect()
+    let results: Vec<TrialResult> = with_progress(&pool, 0..trials, "trials", |i| {
+        batch::trial(&cfg, i).expect("the config was validated above")
     });
-    bar.finish_and_clear();
     let seconds = t0.elapsed().as_secs_f64();
     let s = Summary::of(&results);
     if m.get_flag("json") {
@@ -261,6 +361,262 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
         );
     } else {
         print_table(&cfg, &s, seconds, threads);
+    }
+    Ok(())
+}
+
+/// The rayon pool `--threads` asks for (all cores by default).
+fn thread_pool(m: &ArgMatches) -> Result<(usize, rayon::ThreadPool), UsageError> {
+    let threads = int_flag(m, "threads", 1, 1024)?.map_or_else(
+        || std::thread::available_parallelism().map_or(1, |n| n.get()),
+        |t| t as usize,
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| UsageError(format!("cannot start {threads} threads: {e}")))?;
+    Ok((threads, pool))
+}
+
+/// Maps `work` over `items` on `pool`, in order, with a progress bar and an
+/// ETA on stderr. The bar appears only once the work has taken a second, so
+/// quick runs stay quiet, and indicatif hides it when stderr is not a terminal.
+fn with_progress<T: Send>(
+    pool: &rayon::ThreadPool,
+    items: std::ops::Range<u64>,
+    what: &str,
+    work: impl Fn(u64) -> T + Sync,
+) -> Vec<T> {
+    let t0 = Instant::now();
+    let bar =
+        ProgressBar::with_draw_target(Some(items.end - items.start), ProgressDrawTarget::hidden());
+    bar.set_style(
+        ProgressStyle::with_template(&format!(
+            "{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {what}, eta {{eta}}"
+        ))
+        .expect("a valid template")
+        .progress_chars("=> "),
+    );
+    let shown = AtomicBool::new(false);
+    let out = pool.install(|| {
+        items
+            .into_par_iter()
+            .map(|i| {
+                let r = work(i);
+                if !shown.load(Ordering::Relaxed)
+                    && t0.elapsed().as_secs_f64() > 1.0
+                    && !shown.swap(true, Ordering::Relaxed)
+                {
+                    bar.set_draw_target(ProgressDrawTarget::stderr());
+                }
+                bar.inc(1);
+                r
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    out
+}
+
+/// `--sweep KEY=V1,V2,...` as a spec's sweep (values split on ';' when the
+/// text has one, else on ',').
+fn sweep_json(text: &str) -> Result<serde_json::Value, UsageError> {
+    let (key, values) = text.split_once('=').ok_or_else(|| {
+        UsageError(format!(
+            "--sweep must be KEY=V1,V2,... (cells: KEY=X,Y;X,Y), got {text:?}"
+        ))
+    })?;
+    let sep = if values.contains(';') { ';' } else { ',' };
+    let values: Vec<&str> = values.split(sep).map(str::trim).collect();
+    Ok(serde_json::json!({ "key": key.trim(), "values": values }))
+}
+
+/// `--series 'LABEL:key=v,key=v'` as a spec series. Pairs are split on ',' or
+/// ';'; a piece without '=' continues the value before it (a cell "3,3").
+fn series_json(text: &str) -> Result<serde_json::Value, UsageError> {
+    let bad = || {
+        UsageError(format!(
+            "--series must be LABEL:KEY=V,KEY=V,... with a label, got {text:?}"
+        ))
+    };
+    let (label, pairs) = text.split_once(':').ok_or_else(bad)?;
+    let mut params = serde_json::Map::new();
+    let mut last: Option<String> = None;
+    for piece in pairs.split([',', ';']).filter(|p| !p.trim().is_empty()) {
+        match piece.split_once('=') {
+            Some((k, v)) => {
+                params.insert(k.trim().to_string(), v.trim().into());
+                last = Some(k.trim().to_string());
+            }
+            None => {
+                let k = last.as_ref().ok_or_else(bad)?;
+                let v = params[k].as_str().unwrap_or_default().to_string();
+                params.insert(k.clone(), format!("{v},{}", piece.trim()).into());
+            }
+        }
+    }
+    Ok(serde_json::json!({ "label": label.trim(), "params": params }))
+}
+
+/// A spec error worded for the command line (parameters by their flags).
+fn spec_usage(e: SpecError) -> UsageError {
+    match e {
+        SpecError::Param { place, error } if place == "params" => usage(error),
+        SpecError::Field {
+            field,
+            allowed,
+            got,
+        } if field == "trials" || field == "seed" => {
+            UsageError(format!("--{field} must be {allowed}, got {got}"))
+        }
+        e => UsageError(e.to_string()),
+    }
+}
+
+/// Writes each `(file name, text)` into `dir`: all are written to temporary
+/// names first and renamed at the end, so a failure leaves no partial set.
+fn write_files(dir: &str, files: &[(String, String)]) -> Result<Vec<String>, UsageError> {
+    let fail = |what: &str, e: std::io::Error| UsageError(format!("{what}: {e}"));
+    std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
+    let base = std::path::Path::new(dir);
+    let mut done = Vec::new();
+    for (name, text) in files {
+        let tmp = base.join(format!(".{name}.tmp-{}", std::process::id()));
+        std::fs::write(&tmp, text).map_err(|e| fail(&tmp.display().to_string(), e))?;
+    }
+    for (name, _) in files {
+        let tmp = base.join(format!(".{name}.tmp-{}", std::process::id()));
+        let path = base.join(name);
+        std::fs::rename(&tmp, &path).map_err(|e| fail(&path.display().to_string(), e))?;
+        done.push(path.display().to_string());
+    }
+    Ok(done)
+}
+
+/// The three files of a complete result.
+fn result_files(set: &ResultSet) -> Vec<(String, String)> {
+    let name = &set.plan.header.name;
+    vec![
+        (format!("{name}.json"), set.to_json()),
+        (format!("{name}.csv"), set.csv()),
+        (format!("{name}.svg"), experiment::svg(set)),
+    ]
+}
+
+fn list_experiments() {
+    for e in experiment::list() {
+        out!(
+            "{:<18} {:<8} {:>6} trials  {}",
+            e.name,
+            e.kind,
+            e.default_trials,
+            e.title
+        );
+        out!("{:<18} {}", "", e.help);
+    }
+}
+
+fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
+    if m.get_flag("list") {
+        list_experiments();
+        return Ok(());
+    }
+    let name = m.get_one::<String>("name").ok_or_else(|| {
+        UsageError(format!(
+            "an experiment name is required: one of {} (--list describes them)",
+            experiment::DEFINITIONS
+                .iter()
+                .map(|d| d.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ))
+    })?;
+    let mut spec = serde_json::Map::new();
+    spec.insert("name".into(), name.as_str().into());
+    if let Some(t) = m.get_one::<String>(TRIALS.key) {
+        spec.insert("trials".into(), t.as_str().into());
+    }
+    if let Some(s) = m.get_one::<String>("seed") {
+        spec.insert("seed".into(), s.as_str().into());
+    }
+    if m.get_one::<String>("preset").is_some() {
+        let p = preset(m, None)?;
+        spec.insert("preset".into(), p.map_or("none", |p| p.name()).into());
+    }
+    let mut params = serde_json::Map::new();
+    for p in PARAMS.iter().filter(|p| p.key != "seed") {
+        let raw = match p.kind {
+            Kind::Bool => m.get_flag(p.key).then(|| "1".to_string()),
+            _ => m.get_one::<String>(p.key).cloned(),
+        };
+        if let Some(raw) = raw {
+            params.insert(p.key.into(), raw.into());
+        }
+    }
+    spec.insert("params".into(), params.into());
+    if let Some(s) = m.get_one::<String>("sweep") {
+        spec.insert("sweep".into(), sweep_json(s)?);
+    }
+    if let Some(list) = m.get_many::<String>("series") {
+        let series = list
+            .map(|s| series_json(s))
+            .collect::<Result<Vec<_>, _>>()?;
+        spec.insert("series".into(), series.into());
+    }
+    let spec = Spec::from_value(&spec.into()).map_err(spec_usage)?;
+    let plan = Plan::new(&spec).map_err(spec_usage)?;
+    let total = plan.total_units();
+    let shard = m
+        .get_one::<String>("shard")
+        .map(|s| Shard::parse(s).map_err(UsageError))
+        .transpose()?;
+    let (from, to) = shard.map_or((0, total), |s| s.range(total));
+    let (threads, pool) = thread_pool(m)?;
+    let dir = m.get_one::<String>("out").map_or(".", String::as_str);
+    let t0 = Instant::now();
+    let rows = with_progress(&pool, from..to, "trials", |u| {
+        experiment::run_unit(&plan, u, None)
+    });
+    let seconds = t0.elapsed().as_secs_f64();
+    let set = ResultSet::new(plan, from, to, rows).expect("rows of their own plan fit it");
+    let files = match shard {
+        Some(s) => vec![(
+            format!("{name}.shard-{}-of-{}.json", s.index, s.count),
+            set.to_json(),
+        )],
+        None => result_files(&set),
+    };
+    for path in write_files(dir, &files)? {
+        out!("wrote {path}");
+    }
+    out!(
+        "{name}: units {from}..{to} of {total} ({} points × {} trials) in {seconds:.1} s on {threads} threads",
+        set.plan.points.len(),
+        set.plan.trials()
+    );
+    Ok(())
+}
+
+fn merge(m: &ArgMatches) -> Result<(), UsageError> {
+    let names: Vec<&String> = m
+        .get_many::<String>("files")
+        .into_iter()
+        .flatten()
+        .collect();
+    let mut texts = Vec::with_capacity(names.len());
+    for name in &names {
+        let text = std::fs::read_to_string(name).map_err(|e| UsageError(format!("{name}: {e}")))?;
+        texts.push(text);
+    }
+    let files: Vec<(&str, &str)> = names
+        .iter()
+        .zip(&texts)
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .collect();
+    let set = experiment::merge(&files).map_err(|e| UsageError(e.to_string()))?;
+    let dir = m.get_one::<String>("out").map_or(".", String::as_str);
+    for path in write_files(dir, &result_files(&set))? {
+        out!("wrote {path}");
     }
     Ok(())
 }
@@ -456,8 +812,12 @@ pub fn main() -> i32 {
     };
     let r = match matches.subcommand() {
         Some(("run", m)) => run(m),
+        Some(("experiment", m)) => run_experiment(m),
+        Some(("merge", m)) => merge(m),
         Some(("bench", m)) => bench(m),
-        _ => Err(UsageError("a subcommand is required: run or bench".into())),
+        _ => Err(UsageError(
+            "a subcommand is required: run, experiment, merge or bench".into(),
+        )),
     };
     match r {
         Ok(()) => 0,

@@ -283,3 +283,207 @@ fn bench_times_a_window_of_an_episode() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A fresh empty directory under the system's temp dir.
+fn temp_dir(tag: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("torus-cli-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A small custom experiment: 2 searchers × 2 lattice sizes, 6 trials.
+const SMALL: &[&str] = &[
+    "experiment",
+    "custom",
+    "--preset",
+    "none",
+    "--trials",
+    "6",
+    "--seed",
+    "4",
+    "--loops",
+    "4",
+    "--step-cap",
+    "60",
+    "--sweep",
+    "n=6,9",
+    "--series",
+    "mcts:searcher=mcts,rollout=levy",
+    "--series",
+    "walk, \"rw\":searcher=rw",
+];
+
+fn ok(args: &[&str]) -> String {
+    let o = cli(args);
+    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+    String::from_utf8(o.stdout).unwrap()
+}
+
+#[test]
+fn experiment_writes_json_csv_and_svg() {
+    let dir = temp_dir("exp");
+    let d = dir.to_str().unwrap();
+    let out = ok(&[SMALL, &["--out", d]].concat());
+    assert!(
+        out.contains("custom: units 0..24 of 24 (4 points × 6 trials)"),
+        "{out}"
+    );
+    let json = std::fs::read_to_string(dir.join("custom.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["spec"]["series"][1]["label"], "walk, \"rw\"");
+    assert_eq!(v["points"][3]["config"]["n"], 9);
+    assert_eq!(v["rows"].as_array().unwrap().len(), 24);
+    let csv = std::fs::read_to_string(dir.join("custom.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 5);
+    assert!(
+        csv.lines()
+            .nth(3)
+            .unwrap()
+            .starts_with("2,\"walk, \"\"rw\"\"\",\"6\",6,"),
+        "{csv}"
+    );
+    let svg = std::fs::read_to_string(dir.join("custom.svg")).unwrap();
+    assert!(
+        svg.starts_with("<svg") && svg.contains("<text"),
+        "{}",
+        &svg[..200]
+    );
+    assert!(svg.contains("walk, &quot;rw&quot;") || svg.contains("walk, \"rw\""));
+    // The same spec through run's flags: thread counts do not matter.
+    let again = temp_dir("exp1");
+    ok(&[SMALL, &["--out", again.to_str().unwrap(), "--threads", "1"]].concat());
+    assert_eq!(
+        std::fs::read_to_string(again.join("custom.json")).unwrap(),
+        json
+    );
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::remove_dir_all(&again).ok();
+}
+
+#[test]
+fn shards_merge_into_the_single_run_files() {
+    let dir = temp_dir("shards");
+    let d = dir.to_str().unwrap();
+    ok(&[SMALL, &["--out", &format!("{d}/single")]].concat());
+    for i in 1..=3 {
+        let shard = format!("{i}/3");
+        let out = ok(&[SMALL, &["--out", d, "--shard", &shard]].concat());
+        assert!(
+            out.contains(&format!("custom.shard-{i}-of-3.json")),
+            "{out}"
+        );
+    }
+    assert!(
+        !dir.join("custom.json").exists(),
+        "a shard writes only its JSON"
+    );
+    let shard = |i: u32| format!("{d}/custom.shard-{i}-of-3.json");
+    ok(&[
+        "merge",
+        &shard(3),
+        &shard(1),
+        &shard(2),
+        "--out",
+        &format!("{d}/merged"),
+    ]);
+    for ext in ["json", "csv", "svg"] {
+        assert_eq!(
+            std::fs::read(dir.join(format!("merged/custom.{ext}"))).unwrap(),
+            std::fs::read(dir.join(format!("single/custom.{ext}"))).unwrap(),
+            "{ext}"
+        );
+    }
+    // Bad merges name the file, exit 2 and write nothing.
+    let bad = format!("{d}/bad");
+    let cases: Vec<(Vec<String>, String)> = vec![
+        (
+            vec![shard(1), shard(3)],
+            "units 8..16 of 0..24 are in none of the files (a shard is missing)".into(),
+        ),
+        (
+            vec![shard(1), shard(2), shard(2), shard(3)],
+            format!(
+                "{}: its units 8..16 overlap {}'s units 8..16",
+                shard(2),
+                shard(2)
+            ),
+        ),
+        (
+            vec![shard(1), format!("{d}/single/custom.csv")],
+            format!("{d}/single/custom.csv: not JSON"),
+        ),
+        (
+            vec![shard(1), format!("{d}/nope.json")],
+            format!("{d}/nope.json: "),
+        ),
+    ];
+    for (files, want) in cases {
+        let mut args = vec!["merge".to_string()];
+        args.extend(files);
+        args.extend(["--out".to_string(), bad.clone()]);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = cli(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(&want),
+            "{args:?}: expected {want:?} in {err:?}"
+        );
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(!std::path::Path::new(&bad).exists(), "{args:?} wrote files");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_experiments_exit_2_with_one_line() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["experiment", "sigma"],
+            "experiment must be one of priors, sigma-sweep, delta, loops, decision-time, uniform, nsarw-convergence, known-n20, belief, levy-mu, c-sweep, custom, got \"sigma\"",
+        ),
+        (&["experiment"], "an experiment name is required"),
+        (&["experiment", "delta", "--n", "0"], "--n must be an integer in 3..=1024, got 0"),
+        (&["experiment", "delta", "--trials", "0"], "--trials must be an integer in 1..=100000000, got 0"),
+        (&["experiment", "delta", "--seed", "x"], "--seed must be an integer in 0..=18446744073709551615"),
+        (&["experiment", "delta", "--preset", "paper"], "--preset must be one of paper-text, paper-code, none, got paper"),
+        (&["experiment", "delta", "--shard", "4/3"], "--shard must be i/n with integers 1 <= i <= n"),
+        (&["experiment", "delta", "--shard", "0/3"], "--shard must be i/n"),
+        (&["experiment", "delta", "--threads", "0"], "--threads must be an integer in 1..=1024"),
+        (&["experiment", "sigma-sweep", "--sigma", "3"], "sigma is the x axis of sigma-sweep"),
+        (&["experiment", "delta", "--sweep", "n=10,20"], "sweep is for the custom experiment only"),
+        (&["experiment", "custom", "--sweep", "n"], "--sweep must be KEY=V1,V2,..."),
+        (&["experiment", "custom", "--sweep", "mu=1,2"], "mu must be a number in (1, 3], got 1 (in sweep)"),
+        (&["experiment", "custom", "--sweep", "bogus=1"], "parameter must be one of n, prior"),
+        (&["experiment", "custom", "--series", "nolabel"], "--series must be LABEL:KEY=V"),
+        (&["experiment", "custom", "--series", "a:loops=0"], "loops must be an integer in 1..=10000000, got 0 (in series \"a\")"),
+        (&["experiment", "priors", "--loops", "5"], "priors only samples targets, so loops does not affect it"),
+        (&["run", "--preset", "paper"], "--preset must be one of paper-text, paper-code, none, got paper"),
+    ];
+    for (args, want) in cases {
+        let o = cli(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(want), "{args:?}: expected {want:?} in {err:?}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        assert!(o.stdout.is_empty(), "{args:?} printed to stdout");
+    }
+}
+
+#[test]
+fn presets_apply_before_the_other_flags() {
+    let v = json(&["run", "--preset", "paper-code", "--c", "3", "--dry-run"]);
+    assert_eq!(
+        (v["c"].as_f64(), v["final"].as_str()),
+        (Some(3.0), Some("uct"))
+    );
+    let v = json(&["run", "--preset", "none", "--dry-run"]);
+    assert_eq!(v["final"], "visits");
+    assert_eq!(v["belief"], "posterior");
+    let list = ok(&["experiment", "--list"]);
+    assert!(
+        list.contains("known-n20") && list.contains("10000 trials"),
+        "{list}"
+    );
+}

@@ -25,6 +25,12 @@ mod run;
 mod spec;
 mod summary;
 
+#[cfg(not(target_arch = "wasm32"))]
+mod chart;
+
+#[cfg(not(target_arch = "wasm32"))]
+pub use chart::svg;
+
 pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
 pub use output::{CSV_HEADER, FORMAT, FORMAT_VERSION};
 pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};

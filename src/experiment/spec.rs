@@ -389,7 +389,7 @@ impl Spec {
                 TRIALS.int_value(Some(&raw)).map_err(|e| SpecError::Field {
                     field: "trials".into(),
                     allowed: e.allowed,
-                    got: shown(v),
+                    got: e.value,
                 })?
             }
         };
@@ -401,7 +401,7 @@ impl Spec {
                 p.int_value(Some(&raw)).map_err(|e| SpecError::Field {
                     field: "seed".into(),
                     allowed: format!("{} (a decimal string)", e.allowed),
-                    got: shown(v),
+                    got: e.value,
                 })?
             }
             Some(v) => return Err(field_error("seed", "an integer as a decimal string", v)),
