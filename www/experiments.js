@@ -233,8 +233,8 @@ export class ExperimentsView {
       this.result = { text: out.text, data, source: 'run' };
       this.lastRun = { seconds: out.seconds, workers: out.workers, units: plan.totalUnits, name: spec.name };
       this.live = null;
-      this.setStatus('done', `${plan.totalUnits} trials in ${fmtDuration(out.seconds)} on ${plural} (${(plan.totalUnits / out.seconds).toFixed(1)} trials/s).`);
       await this.show(data);
+      this.setStatus('done', `${plan.totalUnits} trials in ${fmtDuration(out.seconds)} on ${plural} (${(plan.totalUnits / out.seconds).toFixed(1)} trials/s).`);
       return out.text;
     } catch (err) {
       this.live = null;
@@ -302,6 +302,7 @@ export class ExperimentsView {
       try {
         this.fig = await drawExperiment($('exp-figure'), data, mode, { onPoint: (p) => this.openPoint(p.index, data) });
         this.drawnWidth = $('exp-figure').clientWidth;
+        $('exp-figure').dataset.mode = mode;
       } catch (err) {
         showMessage(`Could not draw the chart: ${err.message}`);
       }
@@ -390,8 +391,8 @@ export class ExperimentsView {
     }
     showMessage('');
     this.result = { text, data, source: name };
-    this.setStatus('loaded', `Loaded ${name}: ${data.experiment.title}, ${data.points.length} points.`);
     await this.show(data);
+    this.setStatus('loaded', `Loaded ${name}: ${data.experiment.title}, ${data.points.length} points.`);
     return true;
   }
 }

@@ -123,9 +123,9 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     assert.match(svg, /^<svg xmlns="http:\/\/www.w3.org\/2000\/svg"/);
     assert.ok(svg.includes(result.experiment.title), 'the SVG has the title');
     assert.ok((await page.evaluate(() => window.torusTest.experiments.exported('png'))) > 2000, 'a PNG of the chart');
-    for (const mode of ['mean', 'box']) {
+    for (const mode of ['mean', 'excess', 'box']) {
       await page.selectOption('#exp-chart', mode);
-      await page.waitForFunction(() => document.querySelector('#exp-figure svg'), null, { timeout: 10_000 });
+      await page.waitForSelector(`#exp-figure[data-mode="${mode}"] svg`, { timeout: 10_000 });
     }
     // The Download buttons save files named as the CLI names them.
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#exp-json')]);
@@ -146,30 +146,54 @@ test('a point opens in the live view with its configuration and the seed of its 
     const run = (await page.evaluate(() => window.torusTest.runs()))[0];
     assert.deepEqual(run.config, { ...p.config, keep_traces: run.config.keep_traces });
     assert.equal(run.config.seed, result.spec.seed);
-    assert.match(await message(page), /Opened RW at σ = 3/);
+    assert.match(await message(page), /^Opened RW at sigma = 3 from “Custom experiment”: trial 0 of the point \(seed 11\)\.$/);
     assert.match(page.url(), /[?&]seed=11(&|$)/, 'the live URL carries the seed');
+    // The live episode is the point's trial 0: the same steps and target as its row.
+    const steps = result.row_fields.indexOf('steps');
+    const target = result.row_fields.indexOf('target');
+    const row = result.rows.find((r) => r[0] === p.index && r[1] === 0);
+    await page.evaluate(() => {
+      window.torusTest.dispatch({ type: 'speed', speed: 'max' });
+      window.torusTest.dispatch({ type: 'play' });
+    });
+    await page.waitForFunction(() => ['found', 'capped'].includes(window.torusTest.state()), null, { timeout: 60_000 });
+    const ended = (await page.evaluate(() => window.torusTest.runs()))[0];
+    assert.equal(ended.steps, row[steps], 'steps of trial 0');
+    assert.equal(ended.target, row[target], 'target cell of trial 0');
     assert.doesNotMatch(page.url(), /view=experiments/);
     // Back to the experiments: the result is still there.
     await page.click('#tab-experiments');
     assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), text);
     assert.match(page.url(), /view=experiments&exp=custom/);
+    // A click on the chart opens the point under the pointer (the means chart: a dot at σ = 0).
+    await page.selectOption('#exp-chart', 'mean');
+    await page.waitForSelector('#exp-figure[data-mode="mean"]', { timeout: 10_000 });
+    const dot = await page.locator('#exp-figure g[aria-label="dot"] circle').first().boundingBox();
+    await page.mouse.move(dot.x + dot.width / 2, dot.y + dot.height / 2);
+    await page.mouse.click(dot.x + dot.width / 2, dot.y + dot.height / 2);
+    await page.waitForFunction(() => window.torusTest.view() === 'live', null, { timeout: 10_000 });
+    assert.match(await message(page), /^Opened (MCTS|RW) at sigma = 0 from “Custom experiment”/);
+    await page.evaluate(() => window.torusTest.ready());
+    assert.equal((await page.evaluate(() => window.torusTest.runs()))[0].config.sigma, 0);
   });
 });
 
 test('cancelling a run leaves the page usable, and a new run starts clean', { timeout: 600_000 }, async () => {
   const cli = cliSmall();
-  // A run long enough to cancel: 40 trials per point.
-  await withView(smallQuery({ trials: '40' }), async (page) => {
+  // A run long enough to cancel: 20000 trials per point (80000 trials, a minute or more).
+  await withView(smallQuery({ trials: '20000' }), async (page) => {
     await page.click('#exp-run');
     assert.equal(await status(page), 'running');
-    await page.waitForFunction(() => document.getElementById('exp-progress').value >= 2, null, { timeout: 120_000, polling: 50 });
-    // The page answers while the workers run.
-    const t0 = Date.now();
-    await page.evaluate(() => document.getElementById('exp-status').textContent);
-    assert.ok(Date.now() - t0 < 2_000, 'the main thread is free');
+    // The chart fills in as trials finish: the engine's statistics of the rows so far.
+    await page.waitForFunction(() => /\(running: \d+ of 80000 trials so far\)$/.test(document.getElementById('exp-title').textContent), null, { timeout: 120_000, polling: 50 });
+    const partial = await page.evaluate(() => window.torusTest.experiments.shown());
+    assert.equal(partial.points.length, 4);
+    assert.ok(partial.units.total === 80000 && partial.rows.length < 80000, `${partial.rows.length} rows so far`);
+    assert.ok(partial.points.every((p) => p.n > 0), 'round-robin chunks: every point has trials early');
+    await page.waitForFunction(() => document.querySelector('#exp-figure svg'), null, { timeout: 10_000 });
     await page.click('#exp-cancel');
     await page.waitForFunction(() => document.body.dataset.experiment === 'cancelled', null, { timeout: 10_000 });
-    assert.match(await page.locator('#exp-status').textContent(), /^Cancelled after/);
+    assert.match(await page.locator('#exp-status').textContent(), /^Cancelled after .*; the chart shows the \d+ trials done by then\. Nothing to save\.$/);
     assert.equal(await page.isDisabled('#exp-run'), false);
     assert.equal(await page.isDisabled('#exp-cancel'), true);
     assert.equal(await page.isDisabled('#exp-json'), true, 'a cancelled run has nothing to save');
