@@ -14,6 +14,8 @@ import { MODE_LABELS, chartModes, drawExperiment, pointSummary, standaloneSvg, s
 
 /** Least time between live chart redraws while a run goes on (ms). */
 const LIVE_MS = 1000;
+/** Most of the page's thread the live statistics may take during a run. */
+const LIVE_SHARE = 0.05;
 /** Larger results files are refused before they are read. */
 export const MAX_RESULT_BYTES = 256 << 20;
 
@@ -216,7 +218,7 @@ export class ExperimentsView {
     bar.max = plan.totalUnits;
     bar.value = 0;
     const workers = this.runner.workers;
-    const live = { spec, plan, lastDraw: performance.now(), drawn: 0 };
+    const live = { spec, plan, lastDraw: performance.now(), gap: LIVE_MS, drawn: 0 };
     this.live = live;
     const t0 = performance.now();
     const plural = `${workers} worker${workers > 1 ? 's' : ''}`;
@@ -251,16 +253,19 @@ export class ExperimentsView {
 
   /**
    * Redraws the chart from the trials finished so far (the engine's
-   * statistics of any subset of rows), at most once a second.
+   * statistics of any subset of rows), at most once a second, and less
+   * often if that takes long: while the page's thread computes them, no
+   * worker gets its next chunk, so they may take at most LIVE_SHARE of it.
    */
   liveDraw(live, done) {
     const now = performance.now();
-    if (this.live !== live || done <= live.drawn || done === live.plan.totalUnits || now - live.lastDraw < LIVE_MS) return;
-    live.lastDraw = now;
+    if (this.live !== live || done <= live.drawn || done === live.plan.totalUnits || now - live.lastDraw < live.gap) return;
     const rows = this.runner.finishedRows();
     if (!rows) return;
     live.drawn = done;
     const data = JSON.parse(this.engine.experimentResult(live.spec, rows));
+    live.lastDraw = performance.now();
+    live.gap = Math.max(LIVE_MS, (live.lastDraw - now) / LIVE_SHARE);
     this.show(data, `${done} of ${live.plan.totalUnits} trials so far`);
   }
 
