@@ -180,7 +180,7 @@ function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'ci_low', hi: 'ci
   if (refs.length) {
     const rx = numeric ? (d) => Number(d.x) : (d) => d.xs;
     marks.push(Plot.dot(refs, { x: rx, y: y('y'), symbol: 'times', r: 5, stroke: REFERENCE_COLOR, strokeWidth: 2 }));
-    marks.push(Plot.text([refs[refs.length - 1]], { x: rx, y: y('y'), text: (d) => d.label, dy: -12, textAnchor: 'end', fontSize: 10, fill: REFERENCE_COLOR }));
+    marks.push(Plot.text([refs[0]], { x: rx, y: y('y'), text: (d) => d.label, dx: 8, dy: -10, textAnchor: 'start', fontSize: 10, fill: REFERENCE_COLOR }));
   }
   marks.push(Plot.tip(data, Plot.pointer({ x: xv, y: y(f.mean), title: (d) => pointSummary(result, d), fontSize: 11 })));
   let x;

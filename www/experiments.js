@@ -275,26 +275,34 @@ export class ExperimentsView {
 
   /** Draws a result: the chart, its caption, the table of points. */
   show(data, partial = '') {
+    // Another experiment starts from the chart its header names; the same one keeps the chart chosen.
+    const same = this.modeOf === data.experiment.name;
+    this.modeOf = data.experiment.name;
     this.shown = data;
     const modes = chartModes(data);
-    if (!modes.includes(this.mode)) this.mode = modes[0];
+    if (!same || !modes.includes(this.mode)) this.mode = modes[0];
     fillSelect($('exp-chart'), modes.map((m) => [m, MODE_LABELS[m]]));
     $('exp-chart').value = this.mode;
     const e = data.experiment;
     setText('exp-title', `${e.title}${partial ? ` (running: ${partial})` : ''}`);
-    const bound = data.points.some((p) => p.lower_bound !== null && p.lower_bound !== undefined);
-    const s = data.spec;
-    const parts = [
-      `${e.y.label}; seed ${s.seed}, ${s.trials} ${e.kind === 'targets' ? 'samples' : 'trials'} per point, preset ${s.preset ?? 'none'}; engine ${data.version}.`,
-      e.kind === 'episodes' ? 'Boxes: quartiles; tick: median; ◇: mean; whiskers: the last values within 1.5 IQR; red numbers: capped trials (kept at the cap, never dropped).' : '',
-      bound ? `Grey dashes: the lower bound on the expected ${e.metric === 'excess' ? 'excess steps' : 'steps'} of any searcher.` : '',
-      ...(e.references ?? []).map((r) => `×: ${r.label}.`),
-      e.note ? `Note: ${e.note}.` : '',
-      'Click a point (or Open in the table) to watch its configuration in the live view.',
-    ];
-    setText('exp-caption', parts.filter(Boolean).join(' '));
     this.fillTable(data);
     return this.redraw(this.mode);
+  }
+
+  /** What the chart of `data` drawn as `mode` shows, in words. */
+  caption(data, mode) {
+    const e = data.experiment;
+    const s = data.spec;
+    const bound = mode !== 'excess' && mode !== 'hist' && data.points.some((p) => p.lower_bound !== null && p.lower_bound !== undefined);
+    return [
+      `${mode === 'excess' ? 'steps − optimal steps' : e.y.label}; seed ${s.seed}, ${s.trials} ${e.kind === 'targets' ? 'samples' : 'trials'} per point, preset ${s.preset ?? 'none'}; engine ${data.version}.`,
+      mode === 'box' ? 'Boxes: quartiles; thick tick: median; ◇: mean; whiskers: the last values within 1.5 IQR; red numbers: capped trials (kept at the cap, never dropped).' : '',
+      mode === 'mean' || mode === 'excess' ? 'Bands and bars: t-based 95% confidence intervals of the mean.' : '',
+      bound ? `Grey dashes: the lower bound on the expected ${e.metric === 'excess' ? 'excess steps' : 'steps'} of any searcher.` : '',
+      ...(mode !== 'excess' && mode !== 'hist' ? (e.references ?? []).map((r) => `×: ${r.label}.`) : []),
+      e.note ? `Note: ${e.note}.` : '',
+      'Click a point (or Open in the table) to watch its configuration in the live view.',
+    ].filter(Boolean).join(' ');
   }
 
   /** Draws the shown result as `mode` (drawings are serialised: a late one never overwrites a newer one). */
@@ -302,6 +310,7 @@ export class ExperimentsView {
     if (!this.shown) return this.drawing;
     this.mode = mode;
     const data = this.shown;
+    setText('exp-caption', this.caption(data, mode));
     this.drawing = this.drawing.then(async () => {
       if (data !== this.shown) return;
       try {
