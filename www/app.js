@@ -48,7 +48,7 @@ async function boot() {
   const expUrl = app.page === 'experiments'
     ? readExperimentUrl(engine, schema, split.query, experimentList, presetChoices(engine, schema, experimentList))
     : { state: defaultExperiment(engine, schema, experimentList), messages: [] };
-  url.messages.push(...expUrl.messages);
+  url.messages.push(...expUrl.messages, ...(expUrl.conflict ? [expUrl.conflict] : []));
   setText('version', `v${engine.version()}`);
 
   const controller = new Controller({ session: new SearchSession(engineModule()) });

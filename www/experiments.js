@@ -68,13 +68,14 @@ export class ExperimentsView {
     this.shown = null; // the result drawn (possibly partial)
     this.fig = null;
     this.mode = null;
-    this.live = null; // the run under way: { spec, started }
+    this.live = null; // the run under way: { spec, plan, lastDraw, gap, drawn }
     this.lastRun = null;
     this.drawing = Promise.resolve();
 
     fillSelect($('exp-name'), this.list.map((e) => [e.name, `${e.name}: ${e.title}`]));
     fillSelect($('exp-preset'), this.presets.map((p) => [p, p === 'none' ? 'none (the experiment\'s parameters as given)' : p]));
-    fillSelect($('exp-sweep-key'), schema.params.map((p) => [p.key, `${p.key}: ${p.help}`]));
+    // Any parameter but the seed (the spec's own field) can be swept.
+    fillSelect($('exp-sweep-key'), schema.params.filter((p) => p.key !== 'seed').map((p) => [p.key, `${p.key}: ${p.help}`]));
     Object.assign($('exp-trials'), { min: schema.trials.min, max: schema.trials.max, title: `trials per point: ${schema.trials.allowed}` });
     $('exp-seed').title = `seed: ${schema.params.find((p) => p.key === 'seed').allowed}`;
     for (const id of ['exp-name', 'exp-trials', 'exp-seed', 'exp-preset', 'exp-sweep-key', 'exp-sweep-values', 'exp-series', 'exp-params']) {
@@ -158,13 +159,14 @@ export class ExperimentsView {
         }
       }
     }
-    const { state, messages } = readExperimentUrl(this.engine, this.schema, q.toString(), this.list, this.presets);
+    const { state, messages, conflict } = readExperimentUrl(this.engine, this.schema, q.toString(), this.list, this.presets);
     if (problems.length || messages.length) {
       showMessage([...problems, ...messages, 'The experiment was not changed.'].join('\n'));
       this.sync();
       return;
     }
-    showMessage('');
+    // A conflict between valid values is shown, not undone: the next edit may resolve it.
+    showMessage(conflict ?? '');
     this.state = state;
     this.sync();
     this.onUrl(this.query());

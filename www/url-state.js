@@ -208,7 +208,8 @@ export function defaultExperiment(engine, schema, list) {
  * naming it and what is allowed.
  * @param {object[]} list     the engine's experimentList()
  * @param {string[]} presets  preset choices (presetChoices)
- * @returns {{ state: object, messages: string[] }}
+ * @returns {{ state: object, messages: string[], conflict: string | null }}
+ *   conflict: the engine's reason the state cannot run, if any
  */
 export function readExperimentUrl(engine, schema, search, list, presets) {
   const params = new URLSearchParams(search);
@@ -290,7 +291,15 @@ export function readExperimentUrl(engine, schema, search, list, presets) {
       bad('series', raw, `LABEL:key=value … (${err.message})`, 'Leaving this series out.');
     }
   }
-  return { state, messages };
+  // Values that pass one by one can still conflict (a base parameter that
+  // is the experiment's x axis): the engine's plan says so, and the state is kept to be fixed.
+  let conflict = null;
+  try {
+    engine.experimentPlan(experimentSpec(state));
+  } catch (err) {
+    conflict = `The experiment cannot run as it is: ${err.message}.`;
+  }
+  return { state, messages, conflict };
 }
 
 /** The query string (without "?") of an experiment's state, `view=experiments` first. */

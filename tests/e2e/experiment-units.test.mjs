@@ -130,6 +130,12 @@ test('bad experiment values name the key and what is allowed, and keep the defau
   assert.match(read(new URLSearchParams([['exp', CUSTOM], ['n', '10'], ['sweep', 'start:1,1 15,15']]).toString()).messages.join(' '), /Invalid sweep value start="15,15"/);
   // A sweep or series on a named experiment is not silently used.
   assert.match(read('exp=sigma-sweep&sweep=sigma:1').messages.join(' '), /only exp=custom takes a sweep/);
+  // Values valid one by one that the engine's plan refuses together: kept, with the engine's reason.
+  const x = read('exp=sigma-sweep&sigma=3');
+  assert.deepEqual(x.messages, []);
+  assert.deepEqual(x.state.params, [['sigma', '3']]);
+  assert.match(x.conflict, /^The experiment cannot run as it is: sigma is the x axis of sigma-sweep/);
+  assert.equal(read('').conflict, null);
 });
 
 test('text forms of pairs, series and sweeps', () => {

@@ -268,6 +268,13 @@ test('bad URL values of the Experiments view get messages naming them; the defau
     assert.match(page.url(), new RegExp(`[?&]exp=${list[0].name}(&|$)`));
     assert.doesNotMatch(page.url(), /bogus|no-such/);
   });
+  // Values that conflict only together: the engine's reason, and Run refuses to start.
+  await withView('?view=experiments&exp=sigma-sweep&trials=2&sigma=3', async (page) => {
+    assert.match(await message(page), /The experiment cannot run as it is: sigma is the x axis of sigma-sweep/);
+    await page.click('#exp-run');
+    assert.equal(await status(page), 'error');
+    assert.match(await page.locator('#exp-status').textContent(), /^Not started: sigma is the x axis/);
+  });
   await withView('?view=sideways', async (page) => {
     assert.match(await message(page), /Invalid view="sideways": allowed one of live, experiments\./);
     assert.equal(await page.evaluate(() => window.torusTest.view()), 'live');
