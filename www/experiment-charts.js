@@ -6,7 +6,7 @@
 // histograms); this module only places it.
 //
 //   box    box plots: the q1–q3 bar, a median tick, whisker rules, the mean
-//          as a dot, capped counts above, the lower bound as a dashed rule
+//          as a dot, capped counts above, each point's lower bound as a dashed tick
 //   mean   means against x with their 95% CI bands (CI bars with one x
 //          value), the lower bound dashed, published reference means as crosses
 //   excess mean steps − optimal with 95% CIs (episodes measured in steps)
