@@ -75,6 +75,11 @@ async function boot() {
     $('tab-experiments').setAttribute('aria-pressed', String(page === 'experiments'));
     if (page === 'experiments' && controller.state === 'running') controller.dispatch({ type: 'pause' });
     else controller.dispatch({ type: 'redraw' });
+    if (page === 'live' && app.deferredPlay) {
+      // Opened in the Experiments view with autoplay: the live run starts when first shown.
+      app.deferredPlay = false;
+      controller.whenReady().then(() => controller.dispatch({ type: 'play' }));
+    }
     updateUrl();
   }
 
@@ -88,6 +93,7 @@ async function boot() {
     }
     if (app.config.prior === 'paint') painter.load(app.config);
     app.view = { ...app.view, race: '' };
+    app.deferredPlay = false;
     showView('live');
     sync();
     updateUrl();
@@ -284,13 +290,14 @@ async function boot() {
   $('tab-experiments').addEventListener('click', () => showView('experiments'));
 
   if (app.config.prior === 'paint') painter.load(app.config);
-  installTestHook({ controller, engine, batch, experiments, openConfig, showView });
+  installTestHook({ controller, engine, batch, experiments, showView });
   if (url.messages.length) showMessage(url.messages.join('\n'));
   controller.dispatch({ type: 'speed', speed: app.view.speed });
   controller.dispatch({ type: 'view', view: viewState.frameView() });
   sync();
-  showView(app.page);
   // In the Experiments view the live run waits (it would take a core from the workers).
+  app.deferredPlay = app.view.autoplay && app.page !== 'live';
+  showView(app.page);
   controller.dispatch({ type: 'reset', configs: runConfigs(), autoplay: app.view.autoplay && app.page === 'live' });
 }
 
