@@ -19,7 +19,7 @@ BENCH_EXP_TRIALS ?= 10
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
-.PHONY: help setup setup-browser build serve test bench dist clean \
+.PHONY: help setup setup-browser build serve test bench dist clean figures \
         _build _dist test-fmt test-clippy test-native test-wasm test-e2e
 
 help:
@@ -29,6 +29,7 @@ help:
 	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
+	@echo "make figures every experiment's figure into docs/figures/ (about 20 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
 setup:
@@ -100,6 +101,10 @@ bench: setup
 	fi
 	$(call section,experiments: CLI vs page worker pool (benches/experiments.mjs))
 	node benches/experiments.mjs --exp sigma-sweep --trials $(BENCH_EXP_TRIALS) --threads 2
+
+figures:
+	$(call section,experiment figures into docs/figures (scripts/figures.sh))
+	@scripts/figures.sh
 
 clean:
 	rm -rf www/pkg www/vendor dist target/e2e

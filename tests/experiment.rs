@@ -336,3 +336,42 @@ fn plans_and_specs_survive_a_round_trip() {
         assert_eq!(again, p, "{}", info.name);
     }
 }
+
+#[test]
+fn every_chart_kind_draws_with_text() {
+    let specs = [
+        // heatmap
+        r#"{"name":"priors","trials":50,"params":{"n":"6"}}"#,
+        // line, log x, with published references
+        r#"{"name":"known-n20","trials":2,"preset":null,"params":{"n":"6","target":"2,2","start":"4,4","belief":"posterior"}}"#,
+        // box per x value, and box per series (one x value)
+        SMALL,
+        r#"{"name":"custom","trials":3,"preset":null,"params":{"n":"6","searcher":"nsarw"}}"#,
+    ];
+    for (spec, kind) in specs.iter().zip(["heatmap", "line", "box", "box"]) {
+        let p = plan(spec);
+        assert_eq!(p.header.chart.name(), kind, "{spec}");
+        let total = p.total_units();
+        let rows = run_units(&p, 0, total).unwrap();
+        let set = ResultSet::new(p, 0, total, rows).unwrap();
+        let svg = torus_search::experiment::svg(&set);
+        assert!(svg.starts_with("<svg"), "{kind}");
+        assert!(!svg.contains("could not be drawn"), "{kind}: {svg}");
+        assert!(
+            svg.contains(&set.plan.header.title),
+            "{kind}: the title is drawn as text"
+        );
+        // A partial result says so.
+        let half = ResultSet::new(
+            set.plan.clone(),
+            0,
+            total / 2,
+            set.rows[..(total / 2) as usize].to_vec(),
+        )
+        .unwrap();
+        assert!(
+            torus_search::experiment::svg(&half).contains("partial:"),
+            "{kind}"
+        );
+    }
+}

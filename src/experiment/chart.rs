@@ -19,6 +19,7 @@ use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 type Fallible = Result<(), Box<dyn std::error::Error>>;
@@ -189,9 +190,11 @@ fn draw(root: &Area<'_>, result: &ResultSet) -> Fallible {
     let mut notes: Vec<String> = Vec::new();
     if stats.iter().any(|s| s.capped > 0) {
         let capped: u64 = stats.iter().map(|s| s.capped).sum();
-        notes.push(format!(
-            "{capped} capped trials are kept at the step cap in every statistic"
-        ));
+        notes.push(if capped == 1 {
+            "1 capped trial is kept at the step cap in every statistic".to_string()
+        } else {
+            format!("{capped} capped trials are kept at the step cap in every statistic")
+        });
     }
     if let Some(n) = &h.note {
         notes.push(format!("note: {n}"));
@@ -219,10 +222,24 @@ fn draw(root: &Area<'_>, result: &ResultSet) -> Fallible {
     draw_legend(&side, &entries)
 }
 
-/// The y range over what will be drawn, padded; on a log axis the floor is
-/// the smallest positive value (values at or below 0 are drawn at the floor).
-fn y_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
+/// The y range over what will be drawn, padded, and whether it is drawn on
+/// a log scale: when the experiment asks for one and the positive values
+/// span at least a factor of 20 (less shows too few ticks to read). On a
+/// log axis the floor is below the smallest positive value; values at or
+/// below 0 are drawn at the floor.
+fn y_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64, bool) {
     let vs: Vec<f64> = values.filter(|v| v.is_finite()).collect();
+    let pos = vs.iter().copied().filter(|&v| v > 0.0);
+    let (plo, phi) = (
+        pos.clone().fold(f64::INFINITY, f64::min),
+        pos.fold(0.0, f64::max),
+    );
+    let log = log && plo.is_finite() && phi / plo >= 20.0;
+    let (lo, hi) = y_span(&vs, log);
+    (lo, hi, log)
+}
+
+fn y_span(vs: &[f64], log: bool) -> (f64, f64) {
     let lo = vs.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = vs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     if !lo.is_finite() {
@@ -238,7 +255,7 @@ fn y_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) {
         (floor / 1.5, (hi.max(floor) * 1.5).max(floor * 10.0))
     } else {
         let pad = ((hi - lo) * 0.06).max(0.5);
-        ((lo - pad).min(0.0f64.max(lo - pad)), hi + pad)
+        (lo - pad, hi + pad)
     }
 }
 
@@ -319,8 +336,7 @@ fn boxes(
             s.max,
         ]
     });
-    let log = h.y.log;
-    let (lo, hi) = y_range(values, log);
+    let (lo, hi, log) = y_range(values, h.y.log);
     let k = categories.len();
     let mut builder = ChartBuilder::on(area);
     builder
@@ -459,14 +475,16 @@ fn lines(
             .iter()
             .map(|v| v.parse().unwrap_or(f64::NAN))
             .collect();
-    let x_lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
-    let x_hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let (x_lo, x_hi) = if h.x.log {
-        (x_lo / 1.25, x_hi * 1.25)
-    } else {
-        let pad = ((x_hi - x_lo) * 0.04).max(0.5);
-        (x_lo - pad, x_hi + pad)
-    };
+    // A log axis is drawn as a linear axis of log10(x), labelled at the x
+    // values themselves (plotters labels only the powers of 10 of a log axis).
+    let log_x = h.x.log && xs.iter().all(|&x| x > 0.0);
+    let tx = move |x: f64| if log_x { x.log10() } else { x };
+    let ts: Vec<f64> = xs.iter().map(|&x| tx(x)).collect();
+    let t_lo = ts.iter().copied().fold(f64::INFINITY, f64::min);
+    let t_hi = ts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let span = t_hi - t_lo;
+    let pad = if span > 0.0 { span * 0.05 } else { 0.5 };
+    let (x_lo, x_hi) = (t_lo - pad, t_hi + pad);
     let refs = h.references.iter().flat_map(|r| r.y.iter().copied());
     let values = stats
         .iter()
@@ -479,32 +497,30 @@ fn lines(
             ]
         })
         .chain(refs);
-    let (y_lo, y_hi) = y_range(values, h.y.log);
+    let (y_lo, y_hi, y_log) = y_range(values, h.y.log);
     let mut builder = ChartBuilder::on(area);
     builder
         .margin(16)
         .x_label_area_size(56)
         .y_label_area_size(72);
-    let fmt = |v: &f64| short(*v);
-    let floor = if h.y.log { y_lo } else { f64::NEG_INFINITY };
+    let floor = if y_log { y_lo } else { f64::NEG_INFINITY };
+    let none = |_: &f64| String::new();
     macro_rules! go {
-        ($x:expr, $y:expr) => {{
-            let mut chart = builder.build_cartesian_2d($x, $y)?;
-            axis_labels(
-                &mut chart,
-                &h.x.label,
-                &h.y.label,
-                &fmt,
-                xs.len().max(2) + 2,
-            )?;
-            draw_lines(&mut chart, result, stats, &xs, floor)?
+        ($y:expr, $y_ref:expr) => {{
+            let mut chart = builder.build_cartesian_2d(x_lo..x_hi, $y)?;
+            axis_labels(&mut chart, &h.x.label, &h.y.label, &none, 0)?;
+            chart.draw_series(ts.iter().map(|&t| {
+                PathElement::new(vec![(t, $y_ref.0), (t, $y_ref.1)], RGBColor(228, 228, 228))
+            }))?;
+            let shared = draw_lines(&mut chart, result, stats, &ts, &tx, floor)?;
+            x_ticks(&chart, area, &ts, &h.x.values, $y_ref.0)?;
+            shared
         }};
     }
-    let shared_bound = match (h.x.log, h.y.log) {
-        (false, false) => go!(x_lo..x_hi, y_lo..y_hi),
-        (true, false) => go!((x_lo..x_hi).log_scale(), y_lo..y_hi),
-        (false, true) => go!(x_lo..x_hi, (y_lo..y_hi).log_scale()),
-        (true, true) => go!((x_lo..x_hi).log_scale(), (y_lo..y_hi).log_scale()),
+    let shared_bound = if y_log {
+        go!((y_lo..y_hi).log_scale(), (y_lo, y_hi))
+    } else {
+        go!(y_lo..y_hi, (y_lo, y_hi))
     };
     let mut entries: Vec<(Mark, String)> = h
         .series
@@ -534,15 +550,57 @@ fn lines(
     Ok(entries)
 }
 
-fn draw_lines<'a, 'b: 'a, X, Y>(
-    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
+/// Labels the x axis at the data's x values (`ts` in axis units), skipping
+/// a label that would touch the one before it.
+fn x_ticks<'a, 'b: 'a, Y>(
+    chart: &ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, Y>>,
+    area: &Area<'_>,
+    ts: &[f64],
+    labels: &[String],
+    y_bottom: f64,
+) -> Fallible
+where
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let (bx, by) = area.get_base_pixel();
+    let style = TextStyle::from((FONT, 13).into_font()).pos(Pos::new(HPos::Center, VPos::Top));
+    let mut last_right = i32::MIN;
+    let mut order: Vec<usize> = (0..ts.len()).collect();
+    order.sort_by(|&a, &b| ts[a].total_cmp(&ts[b]));
+    for i in order {
+        let (px, py) = chart.backend_coord(&(ts[i], y_bottom));
+        let (x, y) = (px - bx, py - by);
+        area.draw(&PathElement::new(
+            vec![(x, y), (x, y + 5)],
+            BLACK.stroke_width(1),
+        ))?;
+        let label = short_label(&labels[i]);
+        let half = 4 * label.chars().count() as i32;
+        if x - half > last_right + 6 {
+            area.draw(&Text::new(label, (x, y + 8), style.clone()))?;
+            last_right = x + half;
+        }
+    }
+    Ok(())
+}
+
+/// A value's text for a tick: long decimals (√2) shortened to 4 significant digits.
+fn short_label(text: &str) -> String {
+    match text.parse::<f64>() {
+        Ok(v) if text.len() > 6 => format!("{}", (v * 1e3).round() / 1e3),
+        _ => text.to_string(),
+    }
+}
+
+fn draw_lines<'a, 'b: 'a, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, Y>>,
     result: &ResultSet,
     stats: &[PointStats],
     xs: &[f64],
+    tx: &dyn Fn(f64) -> f64,
     floor: f64,
 ) -> Result<bool, Box<dyn std::error::Error>>
 where
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let plan = &result.plan;
@@ -598,7 +656,7 @@ where
         let pts: Vec<(f64, f64)> =
             r.x.iter()
                 .zip(&r.y)
-                .filter_map(|(x, v)| x.parse::<f64>().ok().map(|x| (x, y(*v))))
+                .filter_map(|(x, v)| x.parse::<f64>().ok().map(|x| (tx(x), y(*v))))
                 .collect();
         chart.draw_series(DashedLineSeries::new(
             pts.clone(),

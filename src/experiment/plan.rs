@@ -460,6 +460,38 @@ mod tests {
     }
 
     #[test]
+    fn custom_sweeps_every_schema_parameter() {
+        let paint = crate::prior::encode_paint(&[1; 36]);
+        for p in config::PARAMS.iter().filter(|p| p.key != "seed") {
+            // Params that make the swept key apply, and a value to sweep.
+            let (params, value): (&str, String) = match p.key {
+                "mu" => (r#""rollout":"levy""#, "1.5".into()),
+                "epsilon" => (r#""rollout":"greedy""#, "0.3".into()),
+                "tree_nodes" => (r#""variant":"tree""#, p.default.text()),
+                "paint" => (r#""prior":"paint""#, paint.clone()),
+                "sigma" | "known" | "prior" => (r#""searcher":"mcts""#, p.default.text()),
+                "target" => (r#""searcher":"mcts""#, "2,2".into()),
+                "loops" => (r#""ms":"0""#, "7".into()),
+                "searcher" => (r#""rv":"1""#, "nsarw".into()),
+                _ => (r#""searcher":"mcts""#, p.default.text()),
+            };
+            let n = if p.key == "n" { "" } else { r#""n":"6","# };
+            let json = format!(
+                r#"{{"name":"custom","trials":1,"params":{{{n}{params}}},"sweep":{{"key":"{}","values":["{value}"]}}}}"#,
+                p.key
+            );
+            let plan = plan(&json).unwrap_or_else(|e| panic!("{}: {e}", p.key));
+            assert_eq!(
+                plan.points[0].config.get(p.key).unwrap(),
+                value,
+                "{}",
+                p.key
+            );
+            assert_eq!(plan.header.x.key.as_deref(), Some(p.key));
+        }
+    }
+
+    #[test]
     fn conflicts_and_bad_values_are_named() {
         let err = |j: &str| plan(j).unwrap_err().to_string();
         assert!(err(r#"{"name":"sigma-sweep","params":{"sigma":"3"}}"#)
