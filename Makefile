@@ -12,6 +12,10 @@ export WASM_BINDGEN_TEST_TIMEOUT ?= 120
 # In CI, Cargo.lock must already be up to date.
 LOCKED := $(if $(filter true 1,$(CI)),--locked,)
 WASM := --target wasm32-unknown-unknown
+# Trials per point of sigma-sweep in the experiments benchmark. The issue's
+# figure is at 100 (`make bench BENCH_EXP_TRIALS=100`): hours on 2 cores, as
+# trapped MCTS episodes run to the step cap of 10 000.
+BENCH_EXP_TRIALS ?= 10
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
@@ -95,6 +99,8 @@ bench: setup
 	  printf '\n==== %s ====\n' "browser benchmark (tests/e2e/bench.mjs)" && \
 	  node tests/e2e/bench.mjs --native; \
 	fi
+	$(call section,experiments: CLI vs page worker pool (benches/experiments.mjs))
+	node benches/experiments.mjs --exp sigma-sweep --trials $(BENCH_EXP_TRIALS) --threads 2
 
 figures:
 	$(call section,experiment figures into docs/figures (scripts/figures.sh))

@@ -19,5 +19,12 @@ vendor() { # vendor SRC DEST: copy only if changed
 vendor node_modules/uplot/dist/uPlot.esm.js  www/vendor/uPlot.esm.js
 vendor node_modules/uplot/dist/uPlot.min.css www/vendor/uPlot.min.css
 vendor node_modules/uplot/LICENSE            www/vendor/uPlot.LICENSE
+# Observable Plot and d3 (the Experiments view's charts): their UMD builds,
+# loaded as classic scripts (an import map would need an inline script, which
+# the page's CSP refuses). Plot's UMD build is made against d3 7.9.0 (pinned).
+vendor node_modules/d3/dist/d3.min.js                     www/vendor/d3.min.js
+vendor node_modules/d3/LICENSE                            www/vendor/d3.LICENSE
+vendor node_modules/@observablehq/plot/dist/plot.umd.min.js www/vendor/plot.umd.min.js
+vendor node_modules/@observablehq/plot/LICENSE            www/vendor/plot.LICENSE
 
 echo "[build] www/pkg: $(du -sh www/pkg/torus_search_bg.wasm | cut -f1) wasm; www/vendor: $(ls www/vendor | tr '\n' ' ')"

@@ -52,7 +52,7 @@ else
   have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is ~/.cargo/bin on PATH?)" >&2; exit 1; }
 fi
 
-# --- npm packages (playwright-core, uplot) from package-lock.json ----------
+# --- npm packages (playwright-core, uplot, plot, d3) from package-lock.json
 stamp=node_modules/.torus-search-lock.sha256
 want_sum="$(cat package.json package-lock.json | sha256sum | cut -d' ' -f1)"
 if [[ ! -f "$stamp" ]] || [[ "$(cat "$stamp")" != "$want_sum" ]]; then

@@ -4,7 +4,7 @@
 // Commands go one way, to the controller; frames come back as events.
 
 import { loadEngine, engineModule, schema as engineSchema, describeError } from './engine.js';
-import { readUrl, writeUrl, raceOptions } from './url-state.js';
+import { readUrl, writeUrl, raceOptions, splitView, readExperimentUrl, defaultExperiment, presetChoices } from './url-state.js';
 import { Controller } from './controller.js';
 import { SearchSession } from './search-session.js';
 import { Controls } from './controls.js';
@@ -16,6 +16,7 @@ import { updateStats } from './panels/stats.js';
 import { updateDecision } from './panels/decision.js';
 import { StepsChart } from './charts.js';
 import { BatchPanel } from './batch.js';
+import { ExperimentsView } from './experiments.js';
 import { bindShare, replayVerdict } from './share.js';
 import { PRESETS } from './presets.js';
 import { installTestHook } from './test-hook.js';
@@ -36,9 +37,18 @@ async function boot() {
   }
   const schema = engineSchema();
   const races = raceOptions(engine, schema);
-  const app = { config: null, view: null, replay: null, trapped: false, runTime: 0, lastTs: 0, panelsTs: 0 };
-  const url = readUrl(engine, schema, location.search, races);
+  const app = { config: null, view: null, page: 'live', replay: null, trapped: false, runTime: 0, lastTs: 0, panelsTs: 0 };
+  // The query describes the view shown: the live run's, or an experiment's.
+  const split = splitView(location.search);
+  app.page = split.view;
+  const url = readUrl(engine, schema, app.page === 'live' ? split.query : '', races);
+  url.messages.unshift(...split.messages);
   Object.assign(app, { config: url.config, view: url.view });
+  const experimentList = engine.experimentList();
+  const expUrl = app.page === 'experiments'
+    ? readExperimentUrl(engine, schema, split.query, experimentList, presetChoices(engine, schema, experimentList))
+    : { state: defaultExperiment(engine, schema, experimentList), messages: [] };
+  url.messages.push(...expUrl.messages, ...(expUrl.conflict ? [expUrl.conflict] : []));
   setText('version', `v${engine.version()}`);
 
   const controller = new Controller({ session: new SearchSession(engineModule()) });
@@ -51,8 +61,45 @@ async function boot() {
   const paintMode = () => app.config.prior === 'paint' && !$('click-start').checked;
 
   function updateUrl() {
-    const q = writeUrl(engine, app.config, app.view, { races });
+    const q = app.page === 'experiments' ? experiments.query() : writeUrl(engine, app.config, app.view, { races });
     history.replaceState(null, '', `${location.pathname}${q ? `?${q}` : ''}`);
+  }
+
+  /** Shows the live view or the Experiments view; the live run pauses while experiments have the cores. */
+  function showView(page) {
+    app.page = page;
+    document.body.dataset.view = page;
+    $('live').hidden = page !== 'live';
+    $('experiments').hidden = page !== 'experiments';
+    $('tab-live').setAttribute('aria-pressed', String(page === 'live'));
+    $('tab-experiments').setAttribute('aria-pressed', String(page === 'experiments'));
+    if (page === 'experiments' && controller.state === 'running') controller.dispatch({ type: 'pause' });
+    else controller.dispatch({ type: 'redraw' });
+    if (page === 'live' && app.deferredPlay) {
+      // Opened in the Experiments view with autoplay: the live run starts when first shown.
+      app.deferredPlay = false;
+      controller.whenReady().then(() => controller.dispatch({ type: 'play' }));
+    }
+    updateUrl();
+  }
+
+  /** Opens an engine config in the live view (a point of an experiment). */
+  function openConfig(config, note) {
+    try {
+      app.config = engine.checkConfig(config);
+    } catch (err) {
+      showMessage(`Could not open that configuration: ${err.message}`);
+      return Promise.resolve(false);
+    }
+    if (app.config.prior === 'paint') painter.load(app.config);
+    app.view = { ...app.view, race: '' };
+    app.deferredPlay = false;
+    showView('live');
+    sync();
+    updateUrl();
+    const ready = restart(true);
+    showMessage(note);
+    return ready;
   }
 
   function sync() {
@@ -230,13 +277,28 @@ async function boot() {
     },
   });
 
+  const experiments = new ExperimentsView({
+    engine,
+    schema,
+    state: expUrl.state,
+    module: engineModule(),
+    onUrl: () => app.page === 'experiments' && updateUrl(),
+    onOpen: (config, note) => openConfig(config, note),
+  });
+  $('exp-from-live').addEventListener('click', () => experiments.useLiveConfig(engine.configParams(app.config, false)));
+  $('tab-live').addEventListener('click', () => showView('live'));
+  $('tab-experiments').addEventListener('click', () => showView('experiments'));
+
   if (app.config.prior === 'paint') painter.load(app.config);
-  installTestHook({ controller, engine, batch });
+  installTestHook({ controller, engine, batch, experiments, showView });
   if (url.messages.length) showMessage(url.messages.join('\n'));
   controller.dispatch({ type: 'speed', speed: app.view.speed });
   controller.dispatch({ type: 'view', view: viewState.frameView() });
   sync();
-  controller.dispatch({ type: 'reset', configs: runConfigs(), autoplay: app.view.autoplay });
+  // In the Experiments view the live run waits (it would take a core from the workers).
+  app.deferredPlay = app.view.autoplay && app.page !== 'live';
+  showView(app.page);
+  controller.dispatch({ type: 'reset', configs: runConfigs(), autoplay: app.view.autoplay && app.page === 'live' });
 }
 
 boot();

@@ -5,6 +5,7 @@
 
 import { $, setText, fmtInt, showMessage } from './ui.js';
 import { WorkerPool } from './worker-pool.js';
+import { engineModule } from './engine.js';
 
 export class BatchPanel {
   /**
@@ -27,7 +28,7 @@ export class BatchPanel {
   /** Replaces the pool with one of `size` workers (tests compare worker counts). */
   usePool(size) {
     this.pool?.terminate();
-    this.pool = new WorkerPool(size);
+    this.pool = new WorkerPool(size, engineModule());
   }
 
   async run() {
@@ -41,7 +42,7 @@ export class BatchPanel {
       showMessage(`Batch: ${err.message}`);
       return;
     }
-    this.pool ??= new WorkerPool();
+    this.pool ??= new WorkerPool(undefined, engineModule());
     const pool = this.pool;
     const workers = `${pool.size} worker${pool.size > 1 ? 's' : ''}`;
     $('batch-run').disabled = true;

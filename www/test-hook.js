@@ -12,8 +12,24 @@
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers
+//   view()             which view is shown: live | experiments; show(view) switches
+//   experiments        the Experiments view:
+//     state()            its state (name, trials, seed, preset, params, sweep, series); setState(s)
+//     spec()             the engine spec of that state
+//     run()              runs it (as the Run button); resolves to the result text, or null
+//     cancel()           cancels a run (as the Cancel button)
+//     status()           idle | running | done | cancelled | error | loaded
+//     result()           the finished or loaded result's text, or null; shown() the drawn (maybe partial) result
+//     lastRun()          { seconds, workers, units, name } of the last finished run
+//     workers()          the pool size; usePool(k) a pool of k workers
+//     load(text, name)   loads a results file's text (as the file input); resolves to true if loaded
+//     exported(kind)     resolves to the text of a download: csv | json | svg (png: its size in bytes)
+//     openPoint(index)   opens a point of the shown result in the live view (as a click)
+//     config(index)      that point's config
 
-export function installTestHook({ controller, engine, batch }) {
+import { experimentSpec } from './url-state.js';
+
+export function installTestHook({ controller, engine, batch, experiments, showView }) {
   window.torusTest = {
     ready: () => controller.whenReady(),
     state: () => controller.state,
@@ -41,6 +57,28 @@ export function installTestHook({ controller, engine, batch }) {
     batch: {
       results: () => batch.results,
       usePool: (k) => batch.usePool(k),
+    },
+    view: () => document.body.dataset.view,
+    show: (view) => showView(view),
+    experiments: {
+      state: () => structuredClone(experiments.state),
+      setState: (s) => experiments.setState(s),
+      spec: () => experimentSpec(experiments.state),
+      run: () => experiments.run(),
+      cancel: () => experiments.cancel(),
+      status: () => document.body.dataset.experiment,
+      result: () => experiments.result?.text ?? null,
+      shown: () => experiments.shown,
+      lastRun: () => experiments.lastRun,
+      workers: () => experiments.runner.workers,
+      usePool: (k) => experiments.runner.usePool(k),
+      load: (text, name) => experiments.loadText(text, name),
+      exported: async (kind) => {
+        const blob = await experiments.exported(kind);
+        return kind === 'png' ? blob.size : blob.text();
+      },
+      openPoint: (index) => experiments.openPoint(index),
+      config: (index) => experiments.shown?.points.find((p) => p.index === index)?.config ?? null,
     },
   };
 }

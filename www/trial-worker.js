@@ -1,20 +1,36 @@
-// A Web Worker with its own wasm instance: runs whole trials of a batch.
-// Messages in:  { id, config, indices: number[] } (config: the engine's, seed included)
-// Messages out: { id, index, result: number[7] } per trial, then { id, done: true },
-//               or { id, error: string }.
+// A Web Worker with its own wasm instance: runs batch trials and experiment
+// units for www/worker-pool.js. No game logic: each task is one facade call.
+// Messages in:  { init: WebAssembly.Module }   (optional, first) the page's compiled engine
+//               { id, seq, task }             task: { kind: 'trial', config, index }
+//                                                  or { kind: 'experiment', spec, from, to }
+// Messages out: { id, seq, result }  (a trial: number[7]; experiment units: a
+//               Float64Array of rows, its buffer transferred), or { id, seq, error: string }.
 import { loadEngine, describeError } from './engine.js';
 
-const ready = loadEngine();
+let ready = null;
+
+function run(engine, task) {
+  switch (task.kind) {
+    case 'trial':
+      return Array.from(engine.runTrial(task.config, task.index));
+    case 'experiment':
+      return engine.experimentRun(task.spec, task.from, task.to);
+    default:
+      throw new Error(`unknown task kind ${JSON.stringify(task.kind)}`);
+  }
+}
 
 self.onmessage = async (e) => {
-  const { id, config, indices } = e.data;
+  if (e.data.init) {
+    ready ??= loadEngine(e.data.init);
+    return;
+  }
+  const { id, seq, task } = e.data;
   try {
-    const engine = await ready;
-    for (const index of indices) {
-      self.postMessage({ id, index, result: Array.from(engine.runTrial(config, index)) });
-    }
-    self.postMessage({ id, done: true });
+    ready ??= loadEngine();
+    const result = run(await ready, task);
+    self.postMessage({ id, seq, result }, ArrayBuffer.isView(result) ? [result.buffer] : []);
   } catch (err) {
-    self.postMessage({ id, error: describeError(err) });
+    self.postMessage({ id, seq, error: describeError(err) });
   }
 };

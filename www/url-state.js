@@ -98,3 +98,231 @@ export function writeUrl(engine, config, view, { full = false, races = [] } = {}
   }
   return params.toString();
 }
+
+// ---------------------------------------------------------------------------
+// Which view the page shows, and the Experiments view's state.
+//
+// `view=experiments` turns the query into an experiment's: `exp` (a name
+// from the engine's experimentList()), `trials`, `seed`, `preset` (a
+// preset's name or `none`), and for the custom experiment `sweep=KEY:V1 V2 …` and repeated
+// `series=LABEL:key=value key=value`; any engine parameter key is a base
+// parameter of the experiment (spec.params). The live view's query is the
+// one above (readUrl). Each view's query describes what it shows, so a
+// shared link reproduces it; the page keeps the other view's state in memory.
+
+/** The page's views; the first is the default. */
+export const VIEWS = ['live', 'experiments'];
+
+/**
+ * The preset choices of an experiment: the engine's presets (named readings
+ * of the paper, from its schema), the spec's default (what a spec without a
+ * preset gets, as the CLI without --preset), and `none`.
+ */
+export function presetChoices(engine, schema, list) {
+  const names = Array.isArray(schema.presets) ? schema.presets.map((p) => (typeof p === 'string' ? p : p.name)) : [];
+  const def = list.length ? engine.experimentPlan({ name: list[0].name }).spec.preset : null;
+  if (def && !names.includes(def)) names.push(def);
+  return [...names, 'none'];
+}
+
+/** The experiment that takes a sweep and series (the engine's `custom`, the CLI's `torus-search experiment custom`). */
+export const CUSTOM = 'custom';
+
+/**
+ * Splits off `view`: resolves to { view, query } where `query` is the rest
+ * of the query string, and a message if `view` was bad.
+ */
+export function splitView(search) {
+  const params = new URLSearchParams(search);
+  const raw = params.getAll('view').at(-1);
+  params.delete('view');
+  const messages = [];
+  let view = VIEWS[0];
+  if (raw !== undefined) {
+    if (VIEWS.includes(raw.trim())) view = raw.trim();
+    else messages.push(`Invalid view=${JSON.stringify(shown(raw))}: allowed one of ${VIEWS.join(', ')}. Using the default view=${VIEWS[0]}.`);
+  }
+  return { view, query: params.toString(), messages };
+}
+
+/** "key=value key=value" → [[key, value]] (values hold no spaces; the engine checks them). */
+export function parsePairs(text) {
+  const out = [];
+  for (const word of String(text).trim().split(/\s+/).filter(Boolean)) {
+    const eq = word.indexOf('=');
+    if (eq <= 0) throw new Error(`${JSON.stringify(shown(word))} is not key=value`);
+    out.push([word.slice(0, eq), word.slice(eq + 1)]);
+  }
+  return out;
+}
+
+/** [[key, value]] → "key=value key=value". */
+export const formatPairs = (pairs) => pairs.map(([k, v]) => `${k}=${v}`).join(' ');
+
+/** "LABEL:key=value …" → { label, params: [[key, value]] }. */
+export function parseSeries(text) {
+  const s = String(text);
+  const colon = s.indexOf(':');
+  const label = (colon < 0 ? s : s.slice(0, colon)).trim();
+  if (!label) throw new Error(`${JSON.stringify(shown(s))} has no label (write LABEL:key=value …)`);
+  return { label, params: parsePairs(colon < 0 ? '' : s.slice(colon + 1)) };
+}
+
+export const formatSeries = ({ label, params }) => `${label}:${formatPairs(params)}`;
+
+/** "KEY:V1 V2 …" → { key, values }. */
+export function parseSweep(text) {
+  const s = String(text);
+  const colon = s.indexOf(':');
+  const key = (colon < 0 ? s : s.slice(0, colon)).trim();
+  const values = colon < 0 ? [] : s.slice(colon + 1).trim().split(/\s+/).filter(Boolean);
+  if (!key) throw new Error(`${JSON.stringify(shown(s))} names no parameter (write KEY:V1 V2 …)`);
+  return { key, values };
+}
+
+export const formatSweep = ({ key, values }) => `${key}:${values.join(' ')}`;
+
+/**
+ * The default experiment state: the first experiment of `list`, its
+ * default trials and preset (the engine's normalised spec of just its
+ * name), the schema's default seed, no parameters, no custom sweep.
+ */
+export function defaultExperiment(engine, schema, list) {
+  const name = list[0]?.name ?? CUSTOM;
+  const spec = engine.experimentPlan({ name }).spec;
+  return {
+    name,
+    trials: String(spec.trials),
+    seed: spec.seed,
+    preset: spec.preset ?? 'none',
+    params: [],
+    sweep: null,
+    series: [],
+  };
+}
+
+/**
+ * Reads an experiment's query (without `view`). Every value is checked
+ * (names against `list` and `presets`, numbers and parameters by the
+ * engine); a bad one keeps its default, or is left out, with a message
+ * naming it and what is allowed.
+ * @param {object[]} list     the engine's experimentList()
+ * @param {string[]} presets  preset choices (presetChoices)
+ * @returns {{ state: object, messages: string[], conflict: string | null }}
+ *   conflict: the engine's reason the state cannot run, if any
+ */
+export function readExperimentUrl(engine, schema, search, list, presets) {
+  const params = new URLSearchParams(search);
+  const state = defaultExperiment(engine, schema, list);
+  const messages = [];
+  const keys = new Set(schema.params.map((p) => p.key));
+  const last = (k) => params.getAll(k).at(-1);
+  const bad = (key, raw, allowed, then) => messages.push(`Invalid ${key}=${JSON.stringify(shown(raw))}: allowed ${allowed}. ${then}`);
+  const names = list.map((e) => e.name);
+  if (params.has('exp')) {
+    const raw = last('exp').trim();
+    if (names.includes(raw)) state.name = raw;
+    else bad('exp', raw, `one of ${names.join(', ')}`, `Using the default exp=${state.name}.`);
+  }
+  const named = list.find((e) => e.name === state.name);
+  if (named) state.trials = String(named.defaultTrials);
+  if (params.has('trials')) {
+    const raw = last('trials');
+    try {
+      state.trials = String(engine.parseTrials(raw.trim()));
+    } catch (err) {
+      bad('trials', raw, `${schema.trials.allowed}`, `Using the default trials=${state.trials}.`);
+    }
+  }
+  if (params.has('seed')) {
+    const raw = last('seed');
+    const { config, errors } = engine.parseParams([['seed', raw]]);
+    if (errors.length) bad('seed', raw, errors[0].allowed, `Using the default seed=${state.seed}.`);
+    else state.seed = config.seed;
+  }
+  if (params.has('preset')) {
+    const raw = last('preset').trim();
+    if (presets.includes(raw)) state.preset = raw;
+    else bad('preset', raw, `one of ${presets.join(', ')}`, `Using the default preset=${state.preset}.`);
+  }
+  // Base parameters: each checked by the engine, in the context of the ones before it.
+  for (const key of new Set(params.keys())) {
+    if (['exp', 'trials', 'seed', 'preset', 'sweep', 'series'].includes(key)) continue;
+    if (!keys.has(key)) {
+      messages.push(`Unknown URL parameter ${JSON.stringify(shown(key))} ignored.`);
+      continue;
+    }
+    const raw = last(key);
+    const { errors } = engine.parseParams([...state.params, [key, raw]]);
+    const e = errors.find((x) => x.field === key);
+    if (e) bad(key, raw, e.allowed, `Leaving ${key} out.`);
+    else state.params.push([key, raw]);
+  }
+  const custom = state.name === CUSTOM;
+  if (params.has('sweep')) {
+    const raw = last('sweep');
+    try {
+      const sweep = parseSweep(raw);
+      if (!keys.has(sweep.key)) throw new Error(`no parameter is named ${JSON.stringify(shown(sweep.key))}`);
+      const values = [];
+      for (const v of sweep.values) {
+        const e = engine.parseParams([...state.params, [sweep.key, v]]).errors.find((x) => x.field === sweep.key);
+        if (e) messages.push(`Invalid sweep value ${sweep.key}=${JSON.stringify(shown(v))}: allowed ${e.allowed}. Leaving it out.`);
+        else values.push(v);
+      }
+      if (!values.length) throw new Error('no valid value to sweep');
+      if (custom) state.sweep = { key: sweep.key, values };
+      else messages.push(`sweep=${JSON.stringify(shown(raw))} ignored: only exp=${CUSTOM} takes a sweep.`);
+    } catch (err) {
+      bad('sweep', raw, `KEY:V1 V2 … with KEY a parameter and valid values (${err.message})`, 'Leaving the sweep out.');
+    }
+  }
+  for (const raw of params.getAll('series')) {
+    try {
+      const s = parseSeries(raw);
+      for (const [k, v] of s.params) {
+        if (!keys.has(k)) throw new Error(`no parameter is named ${JSON.stringify(shown(k))}`);
+        const e = engine.parseParams([...state.params, [k, v]]).errors.find((x) => x.field === k);
+        if (e) throw new Error(`${k}: ${e.allowed}`);
+      }
+      if (custom) state.series.push(s);
+      else messages.push(`series=${JSON.stringify(shown(raw))} ignored: only exp=${CUSTOM} takes series.`);
+    } catch (err) {
+      bad('series', raw, `LABEL:key=value … (${err.message})`, 'Leaving this series out.');
+    }
+  }
+  // Values that pass one by one can still conflict (a base parameter that
+  // is the experiment's x axis): the engine's plan says so, and the state is kept to be fixed.
+  let conflict = null;
+  try {
+    engine.experimentPlan(experimentSpec(state));
+  } catch (err) {
+    conflict = `The experiment cannot run as it is: ${err.message}.`;
+  }
+  return { state, messages, conflict };
+}
+
+/** The query string (without "?") of an experiment's state, `view=experiments` first. */
+export function writeExperimentUrl(state) {
+  const params = new URLSearchParams([['view', 'experiments'], ['exp', state.name], ['trials', state.trials], ['seed', state.seed], ['preset', state.preset]]);
+  for (const [k, v] of state.params) params.append(k, v);
+  if (state.name === CUSTOM) {
+    if (state.sweep) params.set('sweep', formatSweep(state.sweep));
+    for (const s of state.series) params.append('series', formatSeries(s));
+  }
+  return params.toString();
+}
+
+/** The facade's experiment spec for a state (the engine validates it in experimentPlan). */
+export function experimentSpec(state) {
+  const custom = state.name === CUSTOM;
+  return {
+    name: state.name,
+    trials: Number(state.trials),
+    seed: state.seed,
+    preset: state.preset,
+    params: Object.fromEntries(state.params),
+    sweep: custom && state.sweep ? { key: state.sweep.key, values: state.sweep.values } : null,
+    series: custom && state.series.length ? state.series.map((s) => ({ label: s.label, params: Object.fromEntries(s.params) })) : null,
+  };
+}

@@ -8,13 +8,15 @@
 //   leave the server's origin (those are blocked, so the page must work offline).
 // - withPage(dir, path, fn): all of the above, always closed afterwards.
 // - screenshot(page, name): PNG into target/e2e/.
+// - cliBinary({ release }): the torus-search CLI, built if stale.
 // - canvasIsBlank(page, selector): true if every pixel of the canvas, as shown
 //   on screen, has the same colour.
 //
 // Every wait is bounded by a timeout, and the browser and server are closed in
 // `finally` blocks (and the server is killed on process exit as a last resort).
 
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
+import { existsSync, readdirSync, statSync } from 'node:fs';
 import { mkdir, mkdtemp, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -33,6 +35,23 @@ export const CHROMIUM_ARGS = [
   '--disable-component-update',
   '--disable-sync',
 ];
+
+/**
+ * The CLI binary (target/debug/torus-search, or target/release with
+ * `release`), built first if missing or older than a file under src/ or Cargo.toml.
+ */
+export function cliBinary({ release = false } = {}) {
+  const bin = path.join(ROOT, 'target', release ? 'release' : 'debug', 'torus-search');
+  const newest = (dir) => readdirSync(dir, { withFileTypes: true }).reduce((m, e) => {
+    const p = path.join(dir, e.name);
+    return Math.max(m, e.isDirectory() ? newest(p) : statSync(p).mtimeMs);
+  }, 0);
+  const sources = Math.max(newest(path.join(ROOT, 'src')), statSync(path.join(ROOT, 'Cargo.toml')).mtimeMs);
+  if (!existsSync(bin) || statSync(bin).mtimeMs < sources) {
+    execFileSync('cargo', ['build', '--quiet', ...(release ? ['--release'] : []), '--bin', 'torus-search'], { cwd: ROOT, stdio: 'inherit' });
+  }
+  return bin;
+}
 
 /** Default bound for single waits (ms). Generous: CI has 2 cores shared. */
 export const TIMEOUT_MS = 30_000;

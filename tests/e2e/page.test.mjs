@@ -408,7 +408,8 @@ test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, a
     await page.waitForTimeout(2000);
     assert.deepEqual(report.offOrigin, []);
     const csp = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute('content');
-    assert.equal(csp, "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'");
+    // img-src blob: and data: are for the Experiments view's PNG export and Plot's colour ramps (see index.html).
+    assert.equal(csp, "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; img-src 'self' blob: data:");
     assert.equal(await page.locator('script:not([src])').count(), 0, 'no inline scripts');
     assert.equal(await page.locator('[onclick], [onload], [onerror], [onchange], [oninput]').count(), 0, 'no inline handlers');
     const origins = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).origin));

@@ -14,11 +14,12 @@
 // a core range) makes this test fail.
 import assert from 'node:assert/strict';
 import { execFileSync, spawnSync } from 'node:child_process';
-import { existsSync, readFileSync, statSync, writeFileSync } from 'node:fs';
+import { readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import { readUrl } from '../../www/url-state.js';
+import { cliBinary } from './harness.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const SNAPSHOT = path.join(ROOT, 'tests/schema.snapshot.json');
@@ -29,15 +30,6 @@ engine.initSync({ module: readFileSync(path.join(PKG, 'torus_search_bg.wasm')) }
 const schema = engine.schema();
 const DEFAULT = engine.parseParams([]).config;
 
-/** The CLI binary, built if missing or older than the sources. */
-function cliBinary() {
-  const bin = path.join(ROOT, 'target/debug/torus-search');
-  const newest = ['src/config.rs', 'src/cli.rs'].map((f) => statSync(path.join(ROOT, f)).mtimeMs);
-  if (!existsSync(bin) || statSync(bin).mtimeMs < Math.max(...newest)) {
-    execFileSync('cargo', ['build', '--quiet', '--bin', 'torus-search'], { cwd: ROOT, stdio: 'inherit' });
-  }
-  return bin;
-}
 const BIN = cliBinary();
 
 function cli(args) {

@@ -1,0 +1,370 @@
+// Charts of an experiment's result with Observable Plot (vendored with d3
+// into www/vendor by `make build`, loaded on first use as classic scripts:
+// their UMD builds need no import map, which the page's CSP would refuse).
+// Everything drawn is a statistic the engine computed (the result's points:
+// quartiles, whiskers, means, CIs, capped counts, the lower bound,
+// histograms); this module only places it.
+//
+//   box    box plots: the q1–q3 bar, a median tick, whisker rules, the mean
+//          as a dot, capped counts above, each point's lower bound as a dashed tick
+//   mean   means against x with their 95% CI bands (CI bars with one x
+//          value), the lower bound dashed, published reference means as crosses
+//   excess mean steps − optimal with 95% CIs (episodes measured in steps)
+//   hist   (targets experiments) one heatmap of sampled targets per point
+// The experiment's header names the chart that fits it first (its `chart`).
+
+/** Plot's class name for its elements; www/style.css styles them (see drawExperiment). */
+const CLASS = 'exp-plot';
+const PAPER = { background: '#ffffff', color: '#1b1f24', fontSize: '12px', fontFamily: 'system-ui, sans-serif' };
+const BOUND_COLOR = '#6b7280';
+const CAPPED_COLOR = '#c0262d';
+const REFERENCE_COLOR = '#111111';
+
+let plotReady = null;
+
+function loadScript(src) {
+  return new Promise((resolve, reject) => {
+    const s = document.createElement('script');
+    s.src = src;
+    s.onload = resolve;
+    s.onerror = () => reject(new Error(`could not load ${src} (run \`make build\`)`));
+    document.head.append(s);
+  });
+}
+
+/** Loads d3 and Plot once; resolves to the Plot namespace. */
+export function loadPlot() {
+  plotReady ??= (async () => {
+    if (!globalThis.d3) await loadScript(new URL('./vendor/d3.min.js', import.meta.url).href);
+    if (!globalThis.Plot) await loadScript(new URL('./vendor/plot.umd.min.js', import.meta.url).href);
+    return globalThis.Plot;
+  })();
+  return plotReady;
+}
+
+/** The header's chart → this module's mode. */
+const HEADER_MODES = { box: 'box', line: 'mean', heatmap: 'hist' };
+
+/** The chart modes that fit a result's experiment, the header's own first. */
+export function chartModes(result) {
+  const e = result.experiment;
+  const modes = e.kind === 'targets' ? ['hist', 'box', 'mean'] : ['box', 'mean'];
+  if (e.kind === 'episodes' && e.metric !== 'excess' && result.points.some((p) => p.excess_mean !== undefined)) modes.push('excess');
+  const first = HEADER_MODES[e.chart];
+  return first && modes.includes(first) ? [first, ...modes.filter((m) => m !== first)] : modes;
+}
+
+export const MODE_LABELS = { box: 'Box plots', mean: 'Means with 95% CI', excess: 'Mean steps − optimal with 95% CI', hist: 'Histograms of targets' };
+
+/** The x axis's name in a sentence: its parameter key (its label can be long). */
+export function xName(result) {
+  return result.experiment.x.key ?? result.experiment.x.label;
+}
+
+const fmt = (v, d = 1) => (v === null || v === undefined ? '—' : Number.isInteger(v) ? String(v) : Number(v).toFixed(d));
+
+/** The tooltip text of a point. */
+export function pointSummary(result, d) {
+  const e = result.experiment;
+  const lines = [
+    e.x.values.length > 1 ? `${d.series}, ${xName(result)} = ${d.x}` : String(d.series),
+    `mean ${fmt(d.mean)} [${fmt(d.ci_low)}, ${fmt(d.ci_high)}] (n = ${d.n})`,
+    `median ${fmt(d.median)}, quartiles ${fmt(d.q1)}–${fmt(d.q3)}`,
+    `whiskers ${fmt(d.whisker_low)}–${fmt(d.whisker_high)}, range ${fmt(d.min)}–${fmt(d.max)}`,
+  ];
+  if (d.excess_mean !== undefined && e.metric !== 'excess') lines.push(`steps − optimal ${fmt(d.excess_mean)} [${fmt(d.excess_ci_low)}, ${fmt(d.excess_ci_high)}]`);
+  if (d.capped) lines.push(`${d.capped} capped (kept at the cap)`);
+  if (d.lower_bound !== null && d.lower_bound !== undefined) lines.push(`lower bound ${fmt(d.lower_bound, 2)}`);
+  lines.push('click: open in the live view');
+  return lines.join('\n');
+}
+
+/** Plot data: each point, with its series label as `s` and its x text as `xs`. */
+function pointData(result) {
+  return result.points.map((p) => ({ ...p, s: String(p.series), xs: String(p.x) }));
+}
+
+/** For a log axis: values ≤ 0 (no steps) are drawn at half the smallest positive value. */
+function logFloor(data, fields) {
+  let min = Infinity;
+  for (const d of data) for (const f of fields) if (d[f] > 0 && d[f] < min) min = d[f];
+  return Number.isFinite(min) ? min / 2 : 0.5;
+}
+
+/** The points that have a lower bound (each point's own: series may differ in N, r_v or start). */
+function boundData(data) {
+  return data.filter((d) => d.lower_bound !== null && d.lower_bound !== undefined);
+}
+
+/** Published values, as [{ x, xs, y, label }] (the header's `references`, in the metric's units). */
+function referenceData(result) {
+  return (result.experiment.references ?? []).flatMap((r) => r.x.map((x, i) => ({ x, xs: String(x), y: r.y[i], label: r.label })));
+}
+
+/** Values for a log axis: ≤ 0 (no steps) is drawn at the axis floor. */
+function yOf(log, floor) {
+  return (f) => (d) => (d[f] === null || d[f] === undefined ? NaN : log ? Math.max(d[f], floor) : d[f]);
+}
+
+/** The layout of points: faceted by x value, series side by side (one x value: series only). */
+function layout(result) {
+  const e = result.experiment;
+  const single = e.x.values.length === 1;
+  return { single, fx: single ? {} : { fx: 'xs' } };
+}
+
+function boxPlot(Plot, result, width) {
+  const e = result.experiment;
+  const data = pointData(result);
+  const log = e.y.log;
+  const floor = log ? logFloor(data, ['whisker_low', 'q1', 'median', 'mean', 'min', 'lower_bound']) : 0;
+  const y = yOf(log, floor);
+  const { single, fx } = layout(result);
+  const series = e.series;
+  const bounds = boundData(data);
+  const refs = referenceData(result);
+  const marks = [
+    Plot.ruleX(data, { ...fx, x: 's', y1: y('whisker_low'), y2: y('whisker_high'), stroke: 's' }),
+    Plot.barY(data, { ...fx, x: 's', y1: y('q1'), y2: y('q3'), fill: 's', fillOpacity: 0.35, stroke: 's' }),
+    Plot.tickY(data, { ...fx, x: 's', y: y('median'), stroke: 's', strokeWidth: 2.5 }),
+    Plot.dot(data, { ...fx, x: 's', y: y('mean'), fill: 'white', stroke: 's', r: 2.5, symbol: 'diamond' }),
+    Plot.text(data.filter((d) => d.capped > 0), { ...fx, x: 's', y: y('whisker_high'), text: (d) => String(d.capped), dy: -7, fontSize: 9, fill: CAPPED_COLOR }),
+  ];
+  if (bounds.length) marks.push(Plot.tickY(bounds, { ...fx, x: 's', y: y('lower_bound'), stroke: BOUND_COLOR, strokeWidth: 1.5, strokeDasharray: '4,2' }));
+  if (refs.length) marks.push(Plot.dot(refs, { ...(single ? {} : { fx: 'xs' }), y: y('y'), symbol: 'times', r: 5, stroke: REFERENCE_COLOR, strokeWidth: 2 }));
+  marks.push(Plot.tip(data, Plot.pointerX({ ...fx, x: 's', y: y('median'), title: (d) => pointSummary(result, d), fontSize: 11 })));
+  return Plot.plot({
+    width,
+    height: 380,
+    marginLeft: 56,
+    marginBottom: single ? 50 : 36,
+    style: PAPER,
+    className: CLASS,
+    ...(single ? {} : { fx: { domain: e.x.values, label: e.x.label, padding: 0.12 } }),
+    x: single ? { domain: series, label: null, tickRotate: series.some((l) => l.length > 12) ? -15 : 0 } : { domain: series, axis: null, paddingInner: 0.15, paddingOuter: 0.1 },
+    y: { label: e.y.label, type: log ? 'log' : 'linear', grid: true, nice: true },
+    color: { domain: series, legend: true, scheme: 'tableau10' },
+    marks,
+  });
+}
+
+/**
+ * Means with 95% CIs: `f` names the mean and CI fields (mean, ci_low,
+ * ci_high; or the excess ones). Against a numeric x, lines with CI bands;
+ * otherwise dots with CI bars.
+ */
+function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'ci_low', hi: 'ci_high', label: result.experiment.y.label, bounds: true }) {
+  const e = result.experiment;
+  const data = pointData(result);
+  const { single } = layout(result);
+  const numeric = e.x.numeric && !single;
+  const xv = single ? (d) => d.s : numeric ? (d) => Number(d.x) : (d) => d.xs;
+  const log = e.y.log && f.bounds;
+  const floor = log ? logFloor(data, [f.lo, f.mean, 'lower_bound']) : 0;
+  const y = yOf(log, floor);
+  const bounds = f.bounds ? boundData(data) : [];
+  const refs = f.bounds ? referenceData(result) : [];
+  const series = e.series;
+  const marks = [];
+  if (!single) {
+    marks.push(Plot.areaY(data, { x: xv, y1: y(f.lo), y2: y(f.hi), fill: 's', z: 's', fillOpacity: 0.18 }));
+    marks.push(Plot.lineY(data, { x: xv, y: y(f.mean), stroke: 's', z: 's', strokeWidth: 1.8 }));
+  }
+  marks.push(Plot.ruleX(data, { x: xv, y1: y(f.lo), y2: y(f.hi), stroke: 's', strokeOpacity: single ? 1 : 0.6, strokeWidth: single ? 2 : 1 }));
+  marks.push(Plot.dot(data, { x: xv, y: y(f.mean), fill: 's', r: 3 }));
+  if (bounds.length) {
+    if (single) marks.push(Plot.tickY(bounds, { x: xv, y: y('lower_bound'), stroke: BOUND_COLOR, strokeWidth: 1.5, strokeDasharray: '4,2' }));
+    else marks.push(Plot.lineY(bounds, { x: xv, y: y('lower_bound'), z: 's', stroke: BOUND_COLOR, strokeDasharray: '6,4' }));
+    marks.push(Plot.text([bounds[bounds.length - 1]], { x: xv, y: y('lower_bound'), text: () => 'lower bound', dy: 10, textAnchor: 'end', fill: BOUND_COLOR, fontSize: 10 }));
+  }
+  if (refs.length) {
+    const rx = numeric ? (d) => Number(d.x) : (d) => d.xs;
+    marks.push(Plot.dot(refs, { x: rx, y: y('y'), symbol: 'times', r: 5, stroke: REFERENCE_COLOR, strokeWidth: 2 }));
+    marks.push(Plot.text([refs[0]], { x: rx, y: y('y'), text: (d) => d.label, dx: 8, dy: -10, textAnchor: 'start', fontSize: 10, fill: REFERENCE_COLOR }));
+  }
+  marks.push(Plot.tip(data, Plot.pointer({ x: xv, y: y(f.mean), title: (d) => pointSummary(result, d), fontSize: 11 })));
+  let x;
+  if (single) x = { type: 'band', domain: series, label: null, padding: 0.4 };
+  else if (numeric) x = { label: e.x.label, type: e.x.log ? 'log' : 'linear', grid: true };
+  else x = { label: e.x.label, type: 'point', domain: e.x.values, padding: 0.3 };
+  return Plot.plot({
+    width,
+    height: 380,
+    marginLeft: 56,
+    marginRight: 24,
+    marginBottom: 40,
+    style: PAPER,
+    className: CLASS,
+    x,
+    y: { label: f.label, type: log ? 'log' : 'linear', grid: true, nice: true },
+    color: { domain: series, legend: true, scheme: 'tableau10' },
+    marks,
+  });
+}
+
+function excessPlot(Plot, result, width) {
+  // The bound is in the metric's units (steps), so it is not drawn here.
+  return meanPlot(Plot, result, width, { mean: 'excess_mean', lo: 'excess_ci_low', hi: 'excess_ci_high', label: 'steps − optimal steps', bounds: false });
+}
+
+/** Side of a point's square histogram (its config's n, else √length). */
+function histSide(p) {
+  const len = p.histogram.length;
+  const n = p.config?.n;
+  if (Number.isInteger(n) && n * n === len) return n;
+  const s = Math.round(Math.sqrt(len));
+  return s * s === len ? s : 0;
+}
+
+/** Legend ticks for counts: 0 and the powers of ten up to the largest. */
+function decades(cells) {
+  let max = 0;
+  for (const d of cells) if (d.c > max) max = d.c;
+  const out = [0];
+  for (let t = 1; t <= max; t *= 10) out.push(t);
+  return out;
+}
+
+function histPlot(Plot, result, width) {
+  const e = result.experiment;
+  const pts = pointData(result).filter((p) => Array.isArray(p.histogram) && histSide(p) > 0);
+  if (!pts.length) throw new Error('this result has no histograms');
+  const n = histSide(pts[0]);
+  const label = (p) => [e.series.length > 1 ? p.s : '', e.x.values.length > 1 ? `${xName(result)} = ${p.x}` : ''].filter(Boolean).join(', ') || p.s;
+  const cells = [];
+  for (const p of pts) {
+    const side = histSide(p);
+    const f = label(p);
+    for (let i = 0; i < p.histogram.length; i++) cells.push({ f, i: (i % side) + 1, j: Math.floor(i / side) + 1, c: p.histogram[i], p });
+  }
+  const facets = pts.map(label);
+  const cols = Math.min(facets.length, Math.max(1, Math.floor(width / 180)));
+  const rows = Math.ceil(facets.length / cols);
+  const side = Math.floor(width / cols);
+  const ticks = [1, Math.ceil(n / 2), n];
+  const fxOf = (d) => facets.indexOf(d.f) % cols;
+  const fyOf = (d) => Math.floor(facets.indexOf(d.f) / cols);
+  return Plot.plot({
+    width,
+    height: rows * side + 60,
+    marginLeft: 44,
+    marginTop: 30,
+    style: PAPER,
+    className: CLASS,
+    fx: { axis: null, padding: 0.08 },
+    fy: { axis: null, padding: 0.1 },
+    x: { type: 'band', domain: Array.from({ length: n }, (_, k) => k + 1), ticks, label: 'x', padding: 0 },
+    y: { type: 'band', domain: Array.from({ length: n }, (_, k) => k + 1), ticks, label: 'y', padding: 0 },
+    // symlog: a delta prior's one full cell and a wide prior's few per cell both show.
+    color: { type: 'symlog', scheme: 'magma', legend: true, label: 'targets per cell (symlog scale)', ticks: decades(cells) },
+    marks: [
+      Plot.cell(cells, { fx: fxOf, fy: fyOf, x: 'i', y: 'j', fill: 'c', inset: 0, shapeRendering: 'crispEdges' }),
+      Plot.text(facets.map((f, k) => ({ f, k })), { fx: (d) => d.k % cols, fy: (d) => Math.floor(d.k / cols), frameAnchor: 'top', dy: -14, text: 'f', fontSize: 11 }),
+      Plot.tip(cells, Plot.pointer({ fx: fxOf, fy: fyOf, x: 'i', y: 'j', title: (d) => `${d.f}\ncell (${d.i}, ${d.j}): ${d.c} targets\nclick: open in the live view` })),
+    ],
+  });
+}
+
+/**
+ * Draws `result` in `el` (replacing what was there) as `mode`.
+ * onPoint(point) is called when a point is clicked. Resolves to the plot
+ * element (a <figure> with the legend, or an <svg>).
+ */
+export async function drawExperiment(el, result, mode, { onPoint = () => {} } = {}) {
+  const Plot = await loadPlot();
+  const width = Math.max(360, Math.floor(el.clientWidth || 800));
+  const draw = { box: boxPlot, mean: meanPlot, excess: excessPlot, hist: histPlot }[mode];
+  if (!draw) throw new Error(`unknown chart ${JSON.stringify(mode)}`);
+  const fig = draw(Plot, result, width);
+  // Plot puts <style> elements in what it draws; the page's CSP (no inline
+  // styles) would refuse them, so they come out before the chart goes in
+  // (www/style.css has the same rules for .exp-plot), and go back into
+  // exported SVG files, which are not under the page's CSP.
+  fig.plotStyles = [...fig.querySelectorAll('style')].map((st) => {
+    st.remove();
+    return st.textContent;
+  });
+  fig.addEventListener('click', () => {
+    const v = fig.value;
+    if (!v) return;
+    onPoint(v.p ?? v);
+  });
+  el.replaceChildren(fig);
+  return fig;
+}
+
+const SVG_NS = 'http://www.w3.org/2000/svg';
+
+function svgEl(name, attrs, text) {
+  const node = document.createElementNS(SVG_NS, name);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, String(v));
+  if (text !== undefined) node.textContent = text;
+  return node;
+}
+
+/**
+ * One standalone SVG of a drawn chart: a title, the colour legend (Plot
+ * draws it as HTML beside the SVG) and the plot's SVG, on its background.
+ * Returns the SVG text.
+ */
+export function standaloneSvg(fig, title) {
+  const plotSvg = fig.tagName.toLowerCase() === 'svg' ? fig : fig.querySelector(':scope > svg:not([class$="-ramp"])') ?? fig.querySelector('svg:last-of-type');
+  const w = Number(plotSvg.getAttribute('width'));
+  const h = Number(plotSvg.getAttribute('height'));
+  const legend = [];
+  const color = typeof fig.scale === 'function' ? fig.scale('color') : null;
+  if (color && color.type === 'ordinal') color.domain.forEach((d, i) => legend.push([String(d), color.range[i % color.range.length]]));
+  const ramp = fig.tagName.toLowerCase() === 'figure' ? fig.querySelector('svg[class$="-ramp"]') : null;
+  const top = 28;
+  const legendH = legend.length ? 22 : ramp ? Number(ramp.getAttribute('height')) + 6 : 0;
+  const out = svgEl('svg', { xmlns: SVG_NS, width: w, height: top + legendH + h, viewBox: `0 0 ${w} ${top + legendH + h}`, 'font-family': PAPER.fontFamily, 'font-size': 12 });
+  if (fig.plotStyles?.length) out.append(svgEl('style', {}, fig.plotStyles.join('\n')));
+  out.append(svgEl('rect', { width: '100%', height: '100%', fill: PAPER.background }));
+  out.append(svgEl('text', { x: 10, y: 19, 'font-size': 14, 'font-weight': 600, fill: PAPER.color }, title));
+  let x = 10;
+  for (const [label, fill] of legend) {
+    out.append(svgEl('rect', { x, y: top + 4, width: 12, height: 12, fill }));
+    const t = svgEl('text', { x: x + 16, y: top + 14, fill: PAPER.color }, label);
+    out.append(t);
+    x += 28 + 7 * label.length;
+  }
+  if (!legend.length && ramp) {
+    const r = ramp.cloneNode(true);
+    r.setAttribute('x', 10);
+    r.setAttribute('y', top);
+    out.append(r);
+  }
+  const body = plotSvg.cloneNode(true);
+  body.setAttribute('x', 0);
+  body.setAttribute('y', top + legendH);
+  out.append(body);
+  return new XMLSerializer().serializeToString(out);
+}
+
+/** Renders SVG text to a PNG blob at `scale` (the page's CSP allows blob: images for this). */
+export function svgToPng(svgText, scale = 2) {
+  return new Promise((resolve, reject) => {
+    const url = URL.createObjectURL(new Blob([svgText], { type: 'image/svg+xml' }));
+    const img = new Image();
+    img.onload = () => {
+      try {
+        const canvas = document.createElement('canvas');
+        canvas.width = Math.ceil(img.width * scale);
+        canvas.height = Math.ceil(img.height * scale);
+        const ctx = canvas.getContext('2d');
+        ctx.scale(scale, scale);
+        ctx.drawImage(img, 0, 0);
+        canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('the browser made no PNG'))), 'image/png');
+      } catch (err) {
+        reject(err);
+      } finally {
+        URL.revokeObjectURL(url);
+      }
+    };
+    img.onerror = () => {
+      URL.revokeObjectURL(url);
+      reject(new Error('the chart could not be rendered as an image'));
+    };
+    img.src = url;
+  });
+}
