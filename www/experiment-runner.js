@@ -1,14 +1,15 @@
 // Runs an experiment on a pool of Web Workers (www/worker-pool.js), the
-// same way the CLI does: the engine plans the units (point = u / trials,
-// trial = u % trials), the workers run deterministic chunks of units
-// (experimentRun), the rows are put back in unit order, and the engine
-// turns them into the result (experimentResult), byte for byte the CLI's
-// <name>.json for the same spec. No DOM; nothing here computes a statistic.
+// same way the CLI does: the engine plans the units, the workers run
+// deterministic chunks of units (experimentRun), the rows are put back in
+// unit order, and the engine turns them into the result (experimentResult),
+// byte for byte the CLI's <name>.json for the same spec. No DOM; nothing
+// here computes a statistic.
 //
-// Chunks go round-robin over the points (trials 0..c of every point, then
-// c..2c, …), so every point fills in from the start: the live chart shows
-// every point as its trials come in, and the ETA sees every series' cost
-// early.
+// The engine numbers units trial-major (every run of consecutive units
+// visits every point), so plain consecutive chunks fill every point in
+// from the start: the live chart shows every point as its trials come in,
+// and the ETA sees every series' cost early. Which unit is which point is
+// the engine's business, not this file's.
 
 import { WorkerPool } from './worker-pool.js';
 
@@ -16,21 +17,15 @@ import { WorkerPool } from './worker-pool.js';
 const CHUNKS_PER_WORKER = 512;
 
 /**
- * The chunks of a plan of `points` × trials units: [{ from, to, point }]
- * in the order they are handed out. Every unit is in exactly one chunk; a
- * chunk never spans two points. The split depends only on its arguments.
+ * The chunks of a run of `totalUnits` units: [{ from, to }] in the order
+ * they are handed out, consecutive and covering every unit once. The split
+ * depends only on its arguments.
  */
-export function chunkPlan(totalUnits, points, workers) {
-  const trials = totalUnits / points;
-  if (!Number.isInteger(trials) || trials < 1) throw new Error(`${totalUnits} units are not ${points} points × trials`);
-  const c = Math.max(1, Math.min(trials, Math.floor(totalUnits / (workers * CHUNKS_PER_WORKER))));
+export function chunkPlan(totalUnits, workers) {
+  if (!Number.isInteger(totalUnits) || totalUnits < 0) throw new Error(`${totalUnits} is not a number of units`);
+  const c = Math.max(1, Math.floor(totalUnits / (workers * CHUNKS_PER_WORKER)));
   const out = [];
-  for (let t = 0; t < trials; t += c) {
-    for (let p = 0; p < points; p++) {
-      const from = p * trials + t;
-      out.push({ from, to: from + Math.min(c, trials - t), point: p });
-    }
-  }
+  for (let from = 0; from < totalUnits; from += c) out.push({ from, to: Math.min(totalUnits, from + c) });
   return out;
 }
 
@@ -88,7 +83,7 @@ export class ExperimentRunner {
     const plan = this.engine.experimentPlan(spec);
     const total = plan.totalUnits;
     const fields = plan.rowFields.length;
-    const chunks = chunkPlan(total, plan.points.length, this.workers);
+    const chunks = chunkPlan(total, this.workers);
     const rows = new Float64Array(total * fields);
     const a = { rows, fields, done: 0, finished: [] };
     this.active = a;

@@ -353,7 +353,13 @@ pub static DEFINITIONS: &[Definition] = &[
         metric: Metric::Excess,
         chart: Chart::Line,
         default_trials: 100,
-        defaults: &[("n", "20"), ("target", "3,3"), ("start", "11,11"), ("rv", "0")],
+        defaults: &[
+            ("n", "20"),
+            ("target", "3,3"),
+            ("start", "11,11"),
+            ("rv", "0"),
+            ("step_cap", "1000"),
+        ],
         x: Some(XDef {
             key: "loops",
             label: LOOPS_LABEL,
@@ -367,7 +373,7 @@ pub static DEFINITIONS: &[Definition] = &[
             x: &["100", "200", "400", "800", "1600", "3200"],
             y: &[19.21, 11.29, 6.54, 3.87, 2.03, 1.0],
         }],
-        note: None,
+        note: Some("step cap 1000 (60× the optimal 16 moves; the authors used 10 000): a trapped tree-variant episode costs L rollouts per move, so --step-cap 10000 can take hours"),
     },
     Definition {
         name: "belief",

@@ -150,25 +150,21 @@ test('text forms of pairs, series and sweeps', () => {
   assert.throws(() => parseSweep(':1 2'), /names no parameter/);
 });
 
-test('chunks cover every unit once, never span two points, and go round-robin over points', () => {
-  // A chunk that spilled into the next point, or a unit left out by the
-  // last short chunk of a point (trials not a multiple of the chunk), fails here.
-  for (const [total, points, workers] of [[12, 3, 2], [5500, 55, 2], [40000, 4, 8], [7, 7, 1], [1, 1, 4], [12, 4, 1]]) {
-    const chunks = chunkPlan(total, points, workers);
+test('chunks cover every unit once, in order, and are deterministic', () => {
+  // An off-by-one in the last short chunk (units not a multiple of the
+  // chunk size) leaves a unit out or runs one twice, and fails here.
+  for (const [total, workers] of [[12, 2], [5500, 2], [40000, 8], [7, 1], [1, 4], [0, 2], [1025, 1]]) {
+    const chunks = chunkPlan(total, workers);
     const seen = new Uint8Array(total);
+    let next = 0;
     for (const c of chunks) {
       assert.ok(c.from < c.to, JSON.stringify(c));
+      assert.equal(c.from, next, 'consecutive');
+      next = c.to;
       for (let u = c.from; u < c.to; u++) seen[u]++;
-      const trials = total / points;
-      assert.equal(Math.floor(c.from / trials), c.point);
-      assert.equal(Math.floor((c.to - 1) / trials), c.point);
     }
-    assert.ok(seen.every((k) => k === 1), `${total}/${points}/${workers}: every unit exactly once`);
-    assert.deepEqual(chunkPlan(total, points, workers), chunks, 'the split is deterministic');
+    assert.ok(seen.every((k) => k === 1), `${total}/${workers}: every unit exactly once`);
+    assert.deepEqual(chunkPlan(total, workers), chunks, 'the split is deterministic');
   }
-  // Round-robin: the first chunks visit every point before any point's second chunk.
-  const rr = chunkPlan(12, 3, 2);
-  assert.deepEqual(rr.slice(0, 3).map((c) => c.point), [0, 1, 2]);
-  assert.equal(rr[3].from, rr[0].to);
-  assert.throws(() => chunkPlan(6, 4, 2), /6 units are not 4 points × trials/);
+  assert.throws(() => chunkPlan(-1, 2), /-1 is not a number of units/);
 });
