@@ -27,7 +27,7 @@
 //! gives `M_t` exactly. As `t` grows every cap grows by the same `a` or not
 //! at all (inner sets never gain more than outer ones), which makes the
 //! greedy sets nested in `t` too: each move only adds cells, found by a
-//! min-rank query over the distance classes. `docs/bound.md` has the proofs.
+//! min-rank query over the distance classes. `EXPERIMENTS.md` ("The bound") has the proofs.
 //!
 //! # Complexity
 //! With `P` cells of positive mass, `K` distinct detection times (at most
