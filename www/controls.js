@@ -3,24 +3,13 @@
 // writes them (the same text as the URL); every change goes back as text
 // to onParam(key, raw), which the engine parses. Nothing here checks a value.
 
-import { $, CHOICE_LABELS } from './ui.js';
+import { $, CHOICE_LABELS, fillSelect } from './ui.js';
 
 /** Speeds on the slider, in loops per frame. */
 const SPEEDS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
 
 /** Control id → parameter key, for the inputs that edit one parameter. */
 const PARAM_CONTROLS = ['n', 'prior', 'sigma', 'rv', 'start', 'searcher', 'variant', 'rollout', 'belief', 'loops', 'ms', 'c', 'mu', 'final', 'seed'];
-
-function fillSelect(el, options) {
-  el.replaceChildren(
-    ...options.map(([value, label]) => {
-      const o = document.createElement('option');
-      o.value = value;
-      o.textContent = label;
-      return o;
-    }),
-  );
-}
 
 export class Controls {
   /**

@@ -7,7 +7,7 @@
 // the engine (through url-state.js's experiment reader, the same as a
 // URL's); every statistic shown is the engine's.
 
-import { $, setText, showMessage, download } from './ui.js';
+import { $, setText, showMessage, download, fillSelect } from './ui.js';
 import { CUSTOM, experimentSpec, formatPairs, formatSeries, parsePairs, parseSeries, presetChoices, readExperimentUrl, writeExperimentUrl } from './url-state.js';
 import { ExperimentRunner } from './experiment-runner.js';
 import { MODE_LABELS, chartModes, drawExperiment, pointSummary, standaloneSvg, svgToPng, xName } from './experiment-charts.js';
@@ -18,17 +18,6 @@ const LIVE_MS = 1000;
 const LIVE_SHARE = 0.05;
 /** Larger results files are refused before they are read. */
 export const MAX_RESULT_BYTES = 256 << 20;
-
-function fillSelect(el, options) {
-  el.replaceChildren(
-    ...options.map(([value, label]) => {
-      const o = document.createElement('option');
-      o.value = value;
-      o.textContent = label;
-      return o;
-    }),
-  );
-}
 
 /** 83 s → "1 min 23 s". */
 export function fmtDuration(s) {

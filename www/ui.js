@@ -12,6 +12,18 @@ export const CHOICE_LABELS = {
   final: { visits: 'most picks', mean: 'best mean', uct: 'best UCT' },
 };
 
+/** Replaces a <select>'s options with `[value, label]` pairs (text only). */
+export function fillSelect(el, options) {
+  el.replaceChildren(
+    ...options.map(([value, label]) => {
+      const o = document.createElement('option');
+      o.value = value;
+      o.textContent = label;
+      return o;
+    }),
+  );
+}
+
 /** Sets an element's text (by id or element) only when it changes, to spare layout. */
 export function setText(el, text) {
   const node = typeof el === 'string' ? $(el) : el;

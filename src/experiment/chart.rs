@@ -327,13 +327,13 @@ fn boxes(
     };
     let values = stats.iter().flat_map(|s| {
         [
-            s.whisker_low,
-            s.whisker_high,
+            s.spread.whisker_low,
+            s.spread.whisker_high,
             s.ci_low,
             s.ci_high,
             s.lower_bound.unwrap_or(f64::NAN),
-            s.min,
-            s.max,
+            s.spread.min,
+            s.spread.max,
         ]
     });
     let (lo, hi, log) = y_range(values, h.y.log);
@@ -423,20 +423,20 @@ where
             continue;
         }
         chart.draw_series([
-            Rectangle::new([(x0, y(s.q1)), (x1, y(s.q3))], c.mix(0.22).filled()),
-            Rectangle::new([(x0, y(s.q1)), (x1, y(s.q3))], c.stroke_width(1)),
+            Rectangle::new([(x0, y(s.spread.q1)), (x1, y(s.spread.q3))], c.mix(0.22).filled()),
+            Rectangle::new([(x0, y(s.spread.q1)), (x1, y(s.spread.q3))], c.stroke_width(1)),
         ])?;
         let cap = (x1 - x0) * 0.25;
         chart.draw_series(
             [
-                vec![(x0, y(s.median)), (x1, y(s.median))],
-                vec![(mid, y(s.q3)), (mid, y(s.whisker_high))],
-                vec![(mid, y(s.q1)), (mid, y(s.whisker_low))],
+                vec![(x0, y(s.spread.median)), (x1, y(s.spread.median))],
+                vec![(mid, y(s.spread.q3)), (mid, y(s.spread.whisker_high))],
+                vec![(mid, y(s.spread.q1)), (mid, y(s.spread.whisker_low))],
                 vec![
-                    (mid - cap, y(s.whisker_high)),
-                    (mid + cap, y(s.whisker_high)),
+                    (mid - cap, y(s.spread.whisker_high)),
+                    (mid + cap, y(s.spread.whisker_high)),
                 ],
-                vec![(mid - cap, y(s.whisker_low)), (mid + cap, y(s.whisker_low))],
+                vec![(mid - cap, y(s.spread.whisker_low)), (mid + cap, y(s.spread.whisker_low))],
             ]
             .into_iter()
             .map(|pts| PathElement::new(pts, c.stroke_width(2))),
@@ -445,7 +445,7 @@ where
         chart.draw_series(
             mine.iter()
                 .map(|r| r.value as f64)
-                .filter(|&v| v < s.whisker_low || v > s.whisker_high)
+                .filter(|&v| v < s.spread.whisker_low || v > s.spread.whisker_high)
                 .map(|v| Circle::new((mid, y(v)), 2, c.stroke_width(1))),
         )?;
         // The mean and its 95% CI, beside the box.

@@ -25,20 +25,11 @@ pub struct PointStats {
     pub ci_low: f64,
     /// Upper end of the t-based 95% CI of the mean.
     pub ci_high: f64,
-    /// Median.
-    pub median: f64,
-    /// First quartile (R type 7).
-    pub q1: f64,
-    /// Third quartile.
-    pub q3: f64,
-    /// Lowest value at or above q1 − 1.5 IQR.
-    pub whisker_low: f64,
-    /// Highest value at or below q3 + 1.5 IQR.
-    pub whisker_high: f64,
-    /// Smallest value.
-    pub min: f64,
-    /// Largest value.
-    pub max: f64,
+    /// Median, quartiles, Tukey whiskers and range (written as flat
+    /// fields: `median`, `q1`, `q3`, `whisker_low`, `whisker_high`, `min`,
+    /// `max`).
+    #[serde(flatten)]
+    pub spread: BoxStats,
     /// Trials ended by the step cap (kept at the cap in every statistic).
     pub capped: u64,
     /// Trials that detected the target (every sample, for targets).
@@ -102,7 +93,6 @@ pub fn point_stats(
     let values = MeanCi::of(rows.iter().map(|r| r.value as f64));
     let mut sorted: Vec<f64> = rows.iter().map(|r| r.value as f64).collect();
     sorted.sort_by(f64::total_cmp);
-    let b = BoxStats::of_sorted(&sorted);
     let episodes = plan.header.kind == Kind::Episodes;
     let excess =
         episodes.then(|| MeanCi::of(rows.iter().map(|r| r.steps as f64 - r.optimal as f64)));
@@ -121,13 +111,7 @@ pub fn point_stats(
         sd: values.sd,
         ci_low: values.lo,
         ci_high: values.hi,
-        median: b.median,
-        q1: b.q1,
-        q3: b.q3,
-        whisker_low: b.whisker_low,
-        whisker_high: b.whisker_high,
-        min: b.min,
-        max: b.max,
+        spread: BoxStats::of_sorted(&sorted),
         capped: rows.iter().filter(|r| !r.found).count() as u64,
         found: rows.iter().filter(|r| r.found).count() as u64,
         mean_optimal: episodes.then(|| MeanCi::of(rows.iter().map(|r| r.optimal as f64)).mean),
