@@ -270,9 +270,10 @@ fn statistics_on_known_data_keep_the_capped_trial() {
     let half = 2.776 * sd / 5f64.sqrt();
     assert!((s.ci_low - (4.6 - half)).abs() < 1e-9 && (s.ci_high - (4.6 + half)).abs() < 1e-9);
     // q1 = 3, q3 = 5, IQR 2: the upper fence is 8, so 10 is past the whisker.
-    assert_eq!((s.median, s.q1, s.q3), (3.0, 3.0, 5.0));
+    let b = &s.spread;
+    assert_eq!((b.median, b.q1, b.q3), (3.0, 3.0, 5.0));
     assert_eq!(
-        (s.whisker_low, s.whisker_high, s.min, s.max),
+        (b.whisker_low, b.whisker_high, b.min, b.max),
         (2.0, 5.0, 2.0, 10.0)
     );
     assert_eq!(s.mean_optimal, Some(1.0));
@@ -318,7 +319,7 @@ fn priors_sample_the_targets_episodes_draw() {
     }
     // σ = 0: every sample at the centre (7,7), distance 0.
     assert_eq!(stats[0].histogram.as_ref().unwrap()[6 * 12 + 6], 300);
-    assert_eq!(stats[0].max, 0.0);
+    assert_eq!(stats[0].spread.max, 0.0);
     // Sample i is the target of episode i with that point's configuration.
     for i in [0u64, 17, 299] {
         let ep = torus_search::episode::Episode::trial(&p.points[2].config, i).unwrap();

@@ -423,8 +423,14 @@ where
             continue;
         }
         chart.draw_series([
-            Rectangle::new([(x0, y(s.spread.q1)), (x1, y(s.spread.q3))], c.mix(0.22).filled()),
-            Rectangle::new([(x0, y(s.spread.q1)), (x1, y(s.spread.q3))], c.stroke_width(1)),
+            Rectangle::new(
+                [(x0, y(s.spread.q1)), (x1, y(s.spread.q3))],
+                c.mix(0.22).filled(),
+            ),
+            Rectangle::new(
+                [(x0, y(s.spread.q1)), (x1, y(s.spread.q3))],
+                c.stroke_width(1),
+            ),
         ])?;
         let cap = (x1 - x0) * 0.25;
         chart.draw_series(
@@ -436,7 +442,10 @@ where
                     (mid - cap, y(s.spread.whisker_high)),
                     (mid + cap, y(s.spread.whisker_high)),
                 ],
-                vec![(mid - cap, y(s.spread.whisker_low)), (mid + cap, y(s.spread.whisker_low))],
+                vec![
+                    (mid - cap, y(s.spread.whisker_low)),
+                    (mid + cap, y(s.spread.whisker_low)),
+                ],
             ]
             .into_iter()
             .map(|pts| PathElement::new(pts, c.stroke_width(2))),
