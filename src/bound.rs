@@ -42,7 +42,6 @@
 
 use crate::config::{Config, ConfigError};
 use crate::lattice::{Move, Sensor, Torus};
-use crate::prior::TargetPrior;
 use std::collections::VecDeque;
 use std::fmt;
 
@@ -109,13 +108,12 @@ pub fn lower_bound_capped(cfg: &Config) -> Result<f64, ConfigError> {
 }
 
 fn game_bound(cfg: &Config, cap: u32) -> Result<f64, ConfigError> {
-    cfg.validate()?;
-    // Past validation the lattice, sensor and prior build (as in `Episode`).
-    let torus = Torus::new(cfg.n).expect("n was validated");
-    let spec = cfg.prior_spec(&torus)?;
-    let sensor = Sensor::new(&torus, cfg.rv).expect("rv was validated");
-    let prior = TargetPrior::new(&torus, &spec).expect("the prior was validated");
-    let start = torus.cell(cfg.start[0] as i64 - 1, cfg.start[1] as i64 - 1);
+    let crate::config::Game {
+        torus,
+        sensor,
+        prior,
+        start,
+    } = cfg.game()?;
     Ok(if cfg.known {
         known_mean(&torus, &sensor, prior.mass(), start, cap)
     } else {

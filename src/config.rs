@@ -943,6 +943,43 @@ impl Config {
     }
 }
 
+/// The lattice, sensor, target prior and start cell a configuration describes.
+#[derive(Clone, Debug)]
+pub struct Game {
+    /// The lattice.
+    pub torus: Torus,
+    /// The sensor of radius r_v.
+    pub sensor: crate::lattice::Sensor,
+    /// The target prior.
+    pub prior: prior::TargetPrior,
+    /// The start cell.
+    pub start: u32,
+}
+
+impl Config {
+    /// Builds the game this configuration describes: what an episode, the
+    /// bound and an experiment's target samples all start from.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] naming the first invalid field.
+    pub fn game(&self) -> Result<Game, ConfigError> {
+        self.validate()?;
+        // Past validation the lattice, the sensor and the prior build:
+        // n, r_v, the cells and the paint were checked against their ranges.
+        let torus = Torus::new(self.n).expect("n was validated");
+        let spec = self.prior_spec(&torus)?;
+        let sensor = crate::lattice::Sensor::new(&torus, self.rv).expect("rv was validated");
+        let prior = prior::TargetPrior::new(&torus, &spec).expect("the prior was validated");
+        let start = torus.cell(self.start[0] as i64 - 1, self.start[1] as i64 - 1);
+        Ok(Game {
+            torus,
+            sensor,
+            prior,
+            start,
+        })
+    }
+}
+
 /// The key that names a preset in [`Config::set`], URLs and `--preset`.
 pub const PRESET: &str = "preset";
 

@@ -2,7 +2,7 @@
 
 use crate::belief::BeliefState;
 use crate::budget::Budget;
-use crate::config::{Config, ConfigError};
+use crate::config::{Config, ConfigError, Game};
 use crate::lattice::{Move, Sensor, Torus};
 use crate::mcts::DecisionView;
 use crate::prior::{PriorSpec, TargetPrior};
@@ -146,14 +146,12 @@ impl Episode {
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field.
     pub fn trial(cfg: &Config, index: u64) -> Result<Episode, ConfigError> {
-        cfg.validate()?;
-        // Past validation the lattice, the sensor and the priors build:
-        // n, r_v, the cells and the paint were checked against their ranges.
-        let torus = Torus::new(cfg.n).expect("n was validated");
-        let spec = cfg.prior_spec(&torus)?;
-        let sensor = Sensor::new(&torus, cfg.rv).expect("rv was validated");
-        let prior = TargetPrior::new(&torus, &spec).expect("the prior was validated");
-        let start = torus.cell(cfg.start[0] as i64 - 1, cfg.start[1] as i64 - 1);
+        let Game {
+            torus,
+            sensor,
+            prior,
+            start,
+        } = cfg.game()?;
         let mut world = rng::stream(cfg.seed, 2 * index);
         let target = prior.sample(&mut world);
         let plan = cfg.known.then(|| {

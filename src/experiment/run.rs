@@ -12,7 +12,6 @@ use super::defs::{Kind, Metric};
 use super::plan::Plan;
 use crate::episode::Episode;
 use crate::lattice::Torus;
-use crate::prior::TargetPrior;
 use crate::rng;
 use std::fmt;
 
@@ -198,7 +197,7 @@ pub fn run_unit(plan: &Plan, unit: u64, clock: Option<fn() -> f64>) -> Row {
             }
         }
         Kind::Targets => {
-            let (torus, prior) = prior_of(cfg);
+            let crate::config::Game { torus, prior, .. } = game_of(cfg);
             // The episode's world stream: sample i is exactly the target
             // trial i of an episode with this configuration draws.
             let target = prior.sample(&mut rng::stream(cfg.seed, 2 * trial));
@@ -215,12 +214,9 @@ pub fn run_unit(plan: &Plan, unit: u64, clock: Option<fn() -> f64>) -> Row {
     }
 }
 
-/// The lattice and the target prior of a configuration.
-pub(crate) fn prior_of(cfg: &crate::config::Config) -> (Torus, TargetPrior) {
-    let torus = Torus::new(cfg.n).expect("plan configs are validated");
-    let spec = cfg.prior_spec(&torus).expect("plan configs are validated");
-    let prior = TargetPrior::new(&torus, &spec).expect("plan configs are validated");
-    (torus, prior)
+/// The game of a plan's configuration (validated when the plan was made).
+pub(crate) fn game_of(cfg: &crate::config::Config) -> crate::config::Game {
+    cfg.game().expect("plan configs are validated")
 }
 
 /// The prior's centre cell, `(N/2, N/2)` 0-based (the Gaussian's mean).

@@ -5,8 +5,7 @@
 
 use super::defs::{Kind, Metric};
 use super::plan::{Plan, Point};
-use super::run::{prior_of, Row};
-use crate::lattice::Sensor;
+use super::run::{game_of, Row};
 use crate::stats::{BoxStats, MeanCi};
 
 /// The statistics of one point over the rows it has so far.
@@ -71,9 +70,12 @@ pub fn lower_bound(plan: &Plan, point: &Point) -> Option<f64> {
 
 /// The exact mean optimal steps when the target is drawn from the prior.
 pub fn expected_optimal(cfg: &crate::config::Config) -> f64 {
-    let (torus, prior) = prior_of(cfg);
-    let sensor = Sensor::new(&torus, cfg.rv).expect("plan configs are validated");
-    let start = torus.cell(cfg.start[0] as i64 - 1, cfg.start[1] as i64 - 1);
+    let crate::config::Game {
+        torus,
+        sensor,
+        prior,
+        start,
+    } = game_of(cfg);
     prior
         .mass()
         .iter()
