@@ -13,6 +13,7 @@ pub mod bench;
 pub mod bound;
 pub mod budget;
 pub mod config;
+pub mod coverage;
 pub mod episode;
 pub mod experiment;
 pub mod lattice;

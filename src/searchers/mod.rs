@@ -70,6 +70,33 @@ pub trait Searcher {
 
     /// The decision under way at `pos`, for a searcher that deliberates.
     fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView>;
+
+    /// The cells a planner means to enter next, in order (empty for a
+    /// searcher that does not plan a path); the page draws it as a layer.
+    fn intent(&self) -> &[u32] {
+        &[]
+    }
+
+    /// How a planner scored the four moves at its last decision, for the
+    /// decision panel (`None` for a searcher that does not score moves).
+    fn scores(&self) -> Option<MoveScores> {
+        None
+    }
+}
+
+/// A planner's score of each of the four moves (in `Move::ALL` order) and
+/// what the score means, so the page can explain the choice without
+/// computing anything.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct MoveScores {
+    /// What a score is, for people (e.g. "mass covered in 4 moves").
+    pub meaning: &'static str,
+    /// True when a larger score is better.
+    pub higher_is_better: bool,
+    /// The score per move (NaN for a move that was not scored).
+    pub score: [f64; 4],
+    /// The move taken, by index in `Move::ALL`.
+    pub chosen: u8,
 }
 
 /// What a searcher is built from.
