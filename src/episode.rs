@@ -7,7 +7,7 @@ use crate::lattice::{Move, Sensor, Torus};
 use crate::mcts::DecisionView;
 use crate::prior::{PriorSpec, TargetPrior};
 use crate::rng::{self, Rng};
-use crate::searchers::{Searcher, SearcherInfo, Setup, World};
+use crate::searchers::{MoveScores, Searcher, SearcherInfo, Setup, World};
 use crate::traces::Traces;
 use crate::view::Layer;
 
@@ -336,6 +336,17 @@ impl Episode {
     /// The decision under way, for a searcher that deliberates.
     pub fn decision(&self) -> Option<DecisionView> {
         self.searcher.decision(&self.torus, self.position())
+    }
+
+    /// The cells the searcher means to enter next, in order (empty unless
+    /// it plans a path).
+    pub fn intent(&self) -> &[u32] {
+        self.searcher.intent()
+    }
+
+    /// How a planner scored the four moves at its last decision.
+    pub fn scores(&self) -> Option<MoveScores> {
+        self.searcher.scores()
     }
 
     /// Loops done in the decision under way (or the last one).

@@ -13,6 +13,7 @@ use crate::episode::{Episode, Status};
 use crate::mcts::{self, DecisionView, FinalRule};
 use crate::named::named_enum;
 use crate::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
+use crate::searchers::MoveScores;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 named_enum! {
@@ -141,6 +142,8 @@ pub struct FrameRequest {
     pub path_from: u32,
     /// Send the kept rollout traces and the practice target.
     pub traces: bool,
+    /// Send the cells the searcher means to enter next (a planner's path).
+    pub intent: bool,
     /// The search is running on its own: big changing layers may lag by a
     /// fraction of a second rather than be recoloured after every loop.
     pub live: bool,
@@ -230,6 +233,11 @@ pub struct Frame<'a> {
     pub traces: Option<Vec<Bytes<'a>>>,
     /// The practice target of the newest trace.
     pub practice: Option<u32>,
+    /// The cells a planner means to enter next, as little-endian u32 cells
+    /// (when asked and the searcher plans a path).
+    pub intent: Option<Bytes<'a>>,
+    /// How a planner scored the four moves at its last decision.
+    pub scores: Option<MoveScores>,
 }
 
 /// Keys are masked to 53 bits so a JS number holds them exactly.
@@ -256,6 +264,7 @@ pub struct FrameBuilder {
     counts: Vec<u32>,
     path: Vec<u8>,
     traces: Vec<Vec<u8>>,
+    intent: Vec<u8>,
 }
 
 /// Recolouring period (ms) of changing layers while the search runs on its
@@ -293,6 +302,7 @@ impl FrameBuilder {
             counts: Vec::new(),
             path: Vec::new(),
             traces: Vec::new(),
+            intent: Vec::new(),
         }
     }
 
@@ -362,6 +372,13 @@ impl FrameBuilder {
             (None, None)
         };
 
+        let intent = if req.intent && !ep.intent().is_empty() {
+            le_bytes(ep.intent(), &mut self.intent);
+            Some(Bytes(&self.intent[..]))
+        } else {
+            None
+        };
+
         let rule = ep.config().final_rule;
         let decision = ep.decision().map(|view| Decision {
             view,
@@ -412,6 +429,8 @@ impl FrameBuilder {
                 .collect(),
             traces,
             practice,
+            intent,
+            scores: ep.scores(),
         }
     }
 
@@ -468,6 +487,7 @@ mod tests {
                 .collect(),
             path_from: 0,
             traces: true,
+            intent: true,
             live,
         }
     }

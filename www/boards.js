@@ -105,6 +105,7 @@ export class Boards {
           rv: run.config.rv,
           rollouts: opts.rollouts ? run.traces : [],
           practice: opts.practice && running ? run.practice : -1,
+          intent: opts.intent && running ? run.intent : null,
           decision:
             opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
           grid: opts.grid,

@@ -21,6 +21,7 @@ export const COLORS = {
   start: '#7fd4ff',
   target: '#ff5fa2',
   practice: '#7fd4ff',
+  intent: '#ffd166',
   chosen: '#ffd166',
   arrow: 'rgba(255,255,255,0.85)',
   fade: 'rgba(16,20,24,0.62)',
@@ -250,6 +251,7 @@ export class Renderer {
    *   identity: a new key redraws the path),
    *   start, position, target (−1 = none), showTarget,
    *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
+   *   intent: Uint32Array | null (a planner's path ahead, from the position),
    *   decision: { visits: [4], leading: [4 bools] } | null, grid: bool, tiling: bool
    * }
    * Returns true while the path is not drawn to its end yet (a long path after
@@ -334,6 +336,19 @@ export class Renderer {
       ctx.drawImage(layer.line, 0, 0);
     } else {
       this.pathLayer.forget();
+    }
+
+    // A planner's path ahead: dashed, over the path it continues.
+    if (scene.intent && scene.intent.length > 1) {
+      const p = new Path2D();
+      appendWrapPath(p, scene.intent, 0, scene.intent.length, n);
+      eachTile(() => {
+        ctx.setLineDash([lw(Math.max(3, cs * 0.5)), lw(Math.max(3, cs * 0.35))]);
+        ctx.strokeStyle = COLORS.intent;
+        ctx.lineWidth = lw(Math.max(1.5, Math.min(cs * 0.2, 4)));
+        ctx.stroke(p);
+        ctx.setLineDash([]);
+      });
     }
 
     const markerR = Math.max(0.3, 5 / cs); // at least 5 device px

@@ -29,19 +29,21 @@ export class RunView {
     this.layers = new Map(); // layer name -> { key, rgba, min, min_nonzero, max, sum }
     this.traces = [];
     this.practice = -1;
+    this.intent = null; // Uint32Array: the position, then the cells a planner means to enter
   }
 
   /**
    * This run's frame request for the page's view: which layers (with the
    * key of the rendering held, so unchanged ones are not resent), the path
    * from where it is held, and traces for a searcher that deliberates.
-   * @param {{ layers: object[], traces: boolean }} view
+   * @param {{ layers: object[], traces: boolean, intent: boolean }} view
    */
   request(view) {
     return {
       layers: view.layers.map((l) => ({ ...l, have: this.layers.get(l.layer)?.key ?? null })),
       path_from: this.pathLen,
       traces: view.traces && this.deliberates,
+      intent: !!view.intent,
     };
   }
 
@@ -55,7 +57,7 @@ export class RunView {
 
   /** Takes in one frame from the worker. */
   apply(f) {
-    const { path, path_from: from, layers, traces, practice, ...header } = f;
+    const { path, path_from: from, layers, traces, practice, intent, ...header } = f;
     this.frame = header;
     const cells = new Uint32Array(path.buffer, path.byteOffset, path.byteLength / 4);
     const len = from + cells.length;
@@ -73,6 +75,15 @@ export class RunView {
     }
     this.traces = (traces ?? []).map((t) => new Uint32Array(t.buffer, t.byteOffset, t.byteLength / 4));
     this.practice = practice ?? -1;
+    if (intent && intent.byteLength) {
+      // Drawn from where the searcher stands, so it joins the path.
+      const cells = new Uint32Array(intent.byteLength / 4 + 1);
+      cells[0] = header.position;
+      cells.set(new Uint32Array(intent.buffer, intent.byteOffset, intent.byteLength / 4), 1);
+      this.intent = cells;
+    } else {
+      this.intent = null;
+    }
   }
 
   status() {

@@ -101,6 +101,7 @@ function frames(requests = []) {
     transfer.push(f.path.buffer);
     for (const l of f.layers) if (l.rgba) transfer.push(l.rgba.buffer);
     for (const t of f.traces ?? []) transfer.push(t.buffer);
+    if (f.intent) transfer.push(f.intent.buffer);
   }
   st.usage.frameMs += performance.now() - t0;
   st.usage.frames++;

@@ -7,7 +7,7 @@ import { $ } from './ui.js';
 
 /** Heat layers ticked on first load. */
 const DEFAULT_LAYERS = ['prior', 'visits'];
-const OPTION_IDS = ['layer-path', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
+const OPTION_IDS = ['layer-path', 'layer-intent', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
 const TRACE_IDS = ['layer-rollouts', 'rollout-k', 'layer-practice'];
 
 export class ViewState {
@@ -55,9 +55,13 @@ export class ViewState {
       }));
   }
 
-  /** What each frame must carry: { layers, traces }. */
+  /** What each frame must carry: { layers, traces, intent }. */
   frameView() {
-    return { layers: this.layerRequests(), traces: $('layer-rollouts').checked || $('layer-practice').checked };
+    return {
+      layers: this.layerRequests(),
+      traces: $('layer-rollouts').checked || $('layer-practice').checked,
+      intent: $('layer-intent').checked,
+    };
   }
 
   /** How many rollout traces a run must keep (the engine's keep_traces). */
@@ -87,6 +91,7 @@ export class ViewState {
   options() {
     return {
       path: $('layer-path').checked,
+      intent: $('layer-intent').checked,
       rollouts: $('layer-rollouts').checked,
       practice: $('layer-practice').checked,
       arrows: $('layer-arrows').checked,
@@ -98,7 +103,7 @@ export class ViewState {
 
   /** Ticks the layers and options of the teaching view. */
   teaching() {
-    for (const id of ['layer-rollouts', 'layer-practice', 'layer-visits', 'layer-prior', 'layer-arrows', 'layer-grid']) $(id).checked = true;
+    for (const id of ['layer-rollouts', 'layer-practice', 'layer-intent', 'layer-visits', 'layer-prior', 'layer-arrows', 'layer-grid']) $(id).checked = true;
     $('rollout-k').value = '3';
   }
 }

@@ -21,8 +21,45 @@ function rows() {
   return body.rows;
 }
 
+function scoreRows() {
+  const body = $('plan-scores').tBodies[0];
+  if (!body.rows.length) {
+    for (let m = 0; m < 4; m++) {
+      const tr = body.insertRow();
+      for (let k = 0; k < 3; k++) tr.insertCell();
+      tr.cells[0].className = 'move';
+    }
+  }
+  return body.rows;
+}
+
+/** A planner's scores of the four moves, as the engine sent them. */
+function showScores(run, s) {
+  setText('plan-score-h', s.meaning);
+  const trs = scoreRows();
+  const running = run.frame.status === 'running';
+  s.score.forEach((v, m) => {
+    const tr = trs[m];
+    tr.classList.toggle('chosen', running && m === s.chosen);
+    setText(tr.cells[0], `${ARROWS[m]} ${MOVE_NAMES[m]}`);
+    const scored = v !== null && Number.isFinite(v);
+    setText(tr.cells[1], scored ? fmtNum(v) : '–');
+    const d = scored && Number.isFinite(s.score[s.chosen]) ? v - s.score[s.chosen] : null;
+    setText(tr.cells[2], d === null ? '–' : m === s.chosen ? 'chosen' : (d > 0 ? '+' : '') + fmtNum(d));
+  });
+  const better = s.higher_is_better ? 'higher' : 'lower';
+  setText('decision-note', `${run.label} scores each move by ${s.meaning} (${better} is better) and took ${MOVE_NAMES[s.chosen]}.`);
+}
+
 /** Shows the decision under way of `run`. */
 export function updateDecision(run) {
+  const scores = run.frame.scores;
+  $('plan-scores').hidden = !scores || !!run.frame.decision;
+  $('decision').hidden = !!scores && !run.frame.decision;
+  if (scores && !run.frame.decision) {
+    showScores(run, scores);
+    return;
+  }
   const trs = rows();
   const d = run.frame.decision;
   if (!d) {
