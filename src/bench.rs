@@ -119,3 +119,139 @@ impl LoopRunner {
         Ok(())
     }
 }
+
+/// The configurations whose cost per real move is benchmarked on an
+/// `n`×`n` torus: every registered searcher at its defaults, and for one
+/// that reads `variant`, each variant, all on a Gaussian prior with
+/// σ = N/8 (5 at N = 40) so the lattice's scale, not the prior's, changes
+/// with N. Labels are the page's race ids (`mcts-cells`, `rw`, …).
+pub fn move_cases(n: u32) -> Vec<(String, Config)> {
+    let base = Config {
+        n,
+        sigma: n as f64 / 8.0,
+        // A benchmark measures moves, not the cap.
+        step_cap: 100_000_000,
+        ..Config::default()
+    };
+    let mut out = Vec::new();
+    for info in crate::searchers::REGISTRY {
+        let Some(id) = crate::searchers::SearcherId::parse(info.name) else {
+            continue;
+        };
+        let cfg = Config {
+            searcher: id,
+            ..base.clone()
+        };
+        if (info.uses)(&cfg, "variant") {
+            for &variant in crate::mcts::Variant::ALL {
+                out.push((
+                    format!("{}-{variant}", info.name),
+                    Config {
+                        variant,
+                        ..cfg.clone()
+                    },
+                ));
+            }
+        } else {
+            out.push((info.name.to_string(), cfg));
+        }
+    }
+    out
+}
+
+/// Real moves of trials 0, 1, 2, … of a config, made one at a time with
+/// whatever deliberation each takes: the workload behind a searcher's
+/// cost per move.
+pub struct MoveRunner {
+    cfg: Config,
+    trial: u64,
+    episode: Episode,
+    /// Real moves made so far.
+    pub moves: u64,
+    /// Episodes finished so far.
+    pub episodes: u64,
+}
+
+impl MoveRunner {
+    /// Starts before the first move of trial 0.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] naming the first invalid field.
+    pub fn new(cfg: &Config) -> Result<MoveRunner, ConfigError> {
+        cfg.validate()?;
+        Ok(MoveRunner {
+            cfg: cfg.clone(),
+            trial: 0,
+            episode: Episode::trial(cfg, 0)?,
+            moves: 0,
+            episodes: 0,
+        })
+    }
+
+    /// Makes `moves` more real moves (starting the next trial whenever one
+    /// ends).
+    ///
+    /// # Errors
+    /// Only if a new trial's config were invalid (it was checked in `new`).
+    pub fn run(&mut self, moves: u64) -> Result<(), ConfigError> {
+        // Counted in attempts, so a trial detected at its start (no move)
+        // cannot keep this running for ever.
+        for _ in 0..moves {
+            let before = self.episode.steps();
+            let status = self.episode.step_move();
+            self.moves += u64::from(self.episode.steps() - before);
+            if status != crate::episode::Status::Running {
+                self.episodes += 1;
+                self.trial += 1;
+                self.episode = Episode::trial(&self.cfg, self.trial)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn move_cases_cover_every_searcher_and_variant() {
+        let cases = move_cases(40);
+        for info in crate::searchers::REGISTRY {
+            assert!(
+                cases
+                    .iter()
+                    .any(|(l, c)| c.searcher.name() == info.name && l.starts_with(info.name)),
+                "{} missing",
+                info.name
+            );
+        }
+        for v in crate::mcts::Variant::ALL {
+            assert!(cases.iter().any(|(l, _)| *l == format!("mcts-{v}")));
+        }
+        assert!(cases
+            .iter()
+            .all(|(_, c)| c.validate().is_ok() && c.sigma == 5.0));
+    }
+
+    #[test]
+    fn move_runner_makes_the_trials_moves_in_order() {
+        // A small lattice so episodes end and the runner moves on to trial 1, 2, …
+        let cfg = Config {
+            n: 6,
+            sigma: 1.0,
+            searcher: crate::searchers::SearcherId::parse("rw").unwrap(),
+            ..Config::default()
+        };
+        let mut r = MoveRunner::new(&cfg).unwrap();
+        r.run(300).unwrap();
+        let mut expect = 0;
+        for i in 0..r.episodes {
+            expect += u64::from(Episode::trial(&cfg, i).unwrap().run().steps);
+        }
+        // The moves of the finished trials, plus those of the one under way.
+        expect += u64::from(r.episode.steps());
+        assert_eq!(r.moves, expect);
+        assert!(r.episodes >= 2, "trials rolled over: {}", r.episodes);
+    }
+}

@@ -260,6 +260,13 @@ fn bench_command() -> Command {
                 .help("scale every workload (1 = about 10 s in all): a number in (0, 1000] [default: 1]"),
         )
         .arg(
+            Arg::new("moves")
+                .long("moves")
+                .action(ArgAction::SetTrue)
+                .conflicts_with("episode")
+                .help("instead of the suite: the cost per real move of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8"),
+        )
+        .arg(
             Arg::new("episode")
                 .long("episode")
                 .value_name("FILE")
@@ -707,6 +714,9 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
                 UsageError(format!("--scale must be a number in (0, 1000], got {raw}"))
             })?,
     };
+    if m.get_flag("moves") {
+        return bench_moves(scale, json);
+    }
     use torus_search::bench::{mcts_loops, rollout_steps};
     let mut out = serde_json::Map::new();
     let steps = (2e8 * scale) as u64;
@@ -764,6 +774,47 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
     out.insert("belief".into(), Config::default().belief.name().into());
     if json {
         out!("{}", serde_json::Value::Object(out));
+    }
+    Ok(())
+}
+
+/// Times real moves of every searcher at N = 40 and N = 256: each for
+/// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move.
+fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
+    use torus_search::bench::{move_cases, MoveRunner};
+    let mut rows = Vec::new();
+    if !json {
+        out!(
+            "{:<16}{:>6}{:>14}{:>10}",
+            "searcher",
+            "N",
+            "ms per move",
+            "moves"
+        );
+    }
+    for n in [40, 256] {
+        for (label, cfg) in move_cases(n) {
+            let mut r = MoveRunner::new(&cfg).map_err(usage)?;
+            r.run(1).map_err(usage)?;
+            let (moves0, t) = (r.moves, Instant::now());
+            while t.elapsed().as_secs_f64() < 0.4 * scale || r.moves - moves0 < 3 {
+                r.run(1).map_err(usage)?;
+            }
+            let moves = r.moves - moves0;
+            let ms = 1e3 * t.elapsed().as_secs_f64() / moves.max(1) as f64;
+            if !json {
+                out!("{label:<16}{n:>6}{ms:>14.4}{moves:>10}");
+            }
+            rows.push(
+                serde_json::json!({ "searcher": label, "n": n, "ms_per_move": ms, "moves": moves }),
+            );
+        }
+    }
+    if json {
+        out!(
+            "{}",
+            serde_json::json!({ "prior": "gaussian, sigma = N/8", "moves": rows })
+        );
     }
     Ok(())
 }

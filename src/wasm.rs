@@ -400,6 +400,53 @@ pub fn bench_mcts_loops(config: JsValue, loops: f64) -> Result<Vec<f64>, JsError
     Ok(vec![l as f64, m as f64, e as f64])
 }
 
+/// The configurations whose cost per move is benchmarked at side `n`:
+/// `[{ label, config }]` (see `bench::move_cases`).
+#[wasm_bindgen(js_name = benchMoveCases)]
+pub fn bench_move_cases(n: u32) -> Result<JsValue, JsError> {
+    let cases: Vec<serde_json::Value> = crate::bench::move_cases(n)
+        .into_iter()
+        .map(|(label, config)| serde_json::json!({ "label": label, "config": config }))
+        .collect();
+    to_js(&cases)
+}
+
+/// Benchmark workload: real moves of trials 0, 1, … of a config, each
+/// with its whole deliberation, made in calls the caller times.
+#[wasm_bindgen]
+pub struct MoveBench {
+    runner: crate::bench::MoveRunner,
+}
+
+#[wasm_bindgen]
+impl MoveBench {
+    /// A workload before the first move of trial 0 of `config`.
+    ///
+    /// # Errors
+    /// A config error naming the field.
+    #[wasm_bindgen(constructor)]
+    pub fn new(config: JsValue) -> Result<MoveBench, JsError> {
+        let cfg = config_from_js(config)?;
+        Ok(MoveBench {
+            runner: crate::bench::MoveRunner::new(&cfg).map_err(err)?,
+        })
+    }
+
+    /// Makes `moves` more real moves; returns the moves made so far.
+    ///
+    /// # Errors
+    /// When `moves` is not an integer in 1..=1000000000.
+    pub fn run(&mut self, moves: f64) -> Result<f64, JsError> {
+        if !(moves.fract() == 0.0 && (1.0..=1e9).contains(&moves)) {
+            return Err(JsError::new(&format!(
+                "moves must be an integer in 1..=1000000000, got {moves}"
+            )));
+        }
+        self.runner.run(moves as u64).map_err(err)?;
+        Ok(self.runner.moves as f64)
+    }
+}
+
 /// One episode, or two racing on their own configs, advanced from JS and
 /// drawn through frames.
 #[wasm_bindgen]
