@@ -49,6 +49,8 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
         pathLen: r.pathLen,
         work: r.work(),
         rolloutSteps: r.rolloutSteps(),
+        scores: r.frame.scores ?? null,
+        intent: r.intent ? Array.from(r.intent) : [],
       })),
     path: (i = 0) => controller.runs[i]?.path() ?? [],
     dispatch: (cmd) => controller.dispatch(cmd),
