@@ -23,6 +23,14 @@ if [[ -d docs ]]; then
   done < <(find docs -type f \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.gif' -o -iname '*.svg' -o -iname '*.webp' \) -print0)
 fi
 
+# The page's CSP as a header too (hosts that read _headers: Netlify,
+# Cloudflare Pages), so workers and the page run under it, plus nosniff.
+# The meta tag in index.html is the one source; docs/deploy.md has the same
+# two headers for other hosts.
+csp="$(sed -n 's/.*http-equiv="Content-Security-Policy" content="\([^"]*\)".*/\1/p' index.html)"
+[[ -n "$csp" ]] || { echo "error: index.html has no CSP meta tag" >&2; exit 1; }
+printf '/*\n  Content-Security-Policy: %s\n  X-Content-Type-Options: nosniff\n' "$csp" > dist/_headers
+
 # Relative URLs only: no src/href in the HTML may start with "/" or name a host.
 if grep -RInE '(src|href)="(/|[a-z]+://)' dist --include='*.html'; then
   echo "error: dist/ HTML uses absolute URLs (above); use relative ones" >&2

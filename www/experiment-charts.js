@@ -13,6 +13,8 @@
 //   hist   (targets experiments) one heatmap of sampled targets per point
 // The experiment's header names the chart that fits it first (its `chart`).
 
+import { scriptURL } from './trusted.js';
+
 /** Plot's class name for its elements; www/style.css styles them (see drawExperiment). */
 const CLASS = 'exp-plot';
 const PAPER = { background: '#ffffff', color: '#1b1f24', fontSize: '12px', fontFamily: 'system-ui, sans-serif' };
@@ -25,7 +27,7 @@ let plotReady = null;
 function loadScript(src) {
   return new Promise((resolve, reject) => {
     const s = document.createElement('script');
-    s.src = src;
+    s.src = scriptURL(src);
     s.onload = resolve;
     s.onerror = () => reject(new Error(`could not load ${src} (run \`make build\`)`));
     document.head.append(s);

@@ -3,6 +3,8 @@
 // sent (the frame header, the path so far, heatmap renderings, traces). The
 // page reads run views synchronously and never touches the worker's memory.
 
+import { scriptURL } from './trusted.js';
+
 /** One run as the page sees it: fixed facts plus the latest frame. */
 export class RunView {
   /** @param {object} info one entry of the engine's Race.describe() */
@@ -137,7 +139,7 @@ export class SearchSession {
     this.worker?.terminate();
     for (const p of this.pending.values()) p.reject(new EngineError('the search worker was restarted', false));
     this.pending.clear();
-    this.worker = new Worker(new URL('./search-worker.js', import.meta.url), { type: 'module' });
+    this.worker = new Worker(scriptURL(new URL('./search-worker.js', import.meta.url)), { type: 'module' });
     this.worker.onmessage = (e) => this.receive(e.data);
     this.worker.onerror = (e) => {
       e.preventDefault?.();

@@ -7,6 +7,8 @@
 //   { kind: 'trial', config, index }          one batch trial → number[7]
 //   { kind: 'experiment', spec, from, to }    experiment units from..to → Float64Array of rows
 
+import { scriptURL } from './trusted.js';
+
 export class WorkerPool {
   /**
    * @param {number} size   number of workers
@@ -23,7 +25,7 @@ export class WorkerPool {
 
   spawn() {
     while (this.workers.length < this.size) {
-      const w = new Worker(new URL('./trial-worker.js', import.meta.url), { type: 'module' });
+      const w = new Worker(scriptURL(new URL('./trial-worker.js', import.meta.url)), { type: 'module' });
       if (this.module) w.postMessage({ init: this.module });
       this.workers.push(w);
     }

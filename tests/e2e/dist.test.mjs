@@ -4,7 +4,7 @@
 // it works offline from any static host.
 import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
-import { mkdir, mkdtemp, rm, symlink } from 'node:fs/promises';
+import { copyFile, mkdir, mkdtemp, readFile, rm, symlink } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { test } from 'node:test';
@@ -18,7 +18,9 @@ test('dist/ works from a sub-path of a static host', { timeout: 120_000 }, async
   try {
     await mkdir(path.join(host, 'some', 'sub'), { recursive: true });
     await symlink(DIST, path.join(host, 'some', 'sub', 'path'), 'dir');
-    await withPage(host, '/some/sub/path/', async ({ page, report }) => {
+    // The host reads _headers at its root, as Netlify and Cloudflare Pages do.
+    await copyFile(path.join(DIST, '_headers'), path.join(host, '_headers'));
+    await withPage(host, '/some/sub/path/', async ({ page, report, server }) => {
       let state;
       try {
         state = await waitUntilRunning(page, { report });
@@ -27,6 +29,17 @@ test('dist/ works from a sub-path of a static host', { timeout: 120_000 }, async
       }
       assert.notEqual(state, 'error');
       assert.equal(describeProblems(report), '', 'the bundled page reported problems');
+      // The page and its workers were served with the CSP of index.html as a
+      // header (so Trusted Types bind the workers too), and nosniff; the
+      // harness turns any CSP violation into a console error, checked above.
+      const meta = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute('content');
+      assert.match(await readFile(path.join(DIST, '_headers'), 'utf8'), /require-trusted-types-for 'script'/);
+      for (const file of ['', 'www/search-worker.js', 'www/trial-worker.js', 'www/pkg/torus_search_bg.wasm']) {
+        const res = await page.request.get(`${server.url}some/sub/path/${file}`);
+        assert.equal(res.status(), 200, file);
+        assert.equal(res.headers()['content-security-policy'], meta, `${file || 'index.html'} has the CSP header`);
+        assert.equal(res.headers()['x-content-type-options'], 'nosniff', file);
+      }
     });
   } finally {
     await rm(host, { recursive: true, force: true });

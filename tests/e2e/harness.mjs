@@ -79,7 +79,7 @@ export function withTimeout(promise, ms, what) {
 export async function startServer(dir = ROOT, { timeoutMs = TIMEOUT_MS } = {}) {
   const child = spawn(
     'python3',
-    ['-u', '-m', 'http.server', '0', '--bind', '127.0.0.1', '--directory', dir],
+    ['-u', path.join(ROOT, 'scripts/static_server.py'), '0', dir],
     { stdio: ['ignore', 'pipe', 'pipe'] },
   );
   liveChildren.add(child);
@@ -190,6 +190,13 @@ export async function openPage(context, url, { timeoutMs = TIMEOUT_MS } = {}) {
   });
   page.on('response', (res) => {
     if (res.status() >= 400) report.failedRequests.push(`${res.request().method()} ${res.url()}: HTTP ${res.status()}`);
+  });
+  // Every CSP violation (Trusted Types included) becomes a console error,
+  // so every test that checks for console errors checks the CSP too.
+  await page.addInitScript(() => {
+    document.addEventListener('securitypolicyviolation', (e) => {
+      console.error(`CSP violation: ${e.violatedDirective} blocked ${e.blockedURI || 'inline'} (${e.sample || 'no sample'})`);
+    });
   });
   await page.goto(url, { waitUntil: 'load', timeout: timeoutMs });
   return { page, report };

@@ -409,7 +409,25 @@ test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, a
     assert.deepEqual(report.offOrigin, []);
     const csp = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute('content');
     // img-src blob: and data: are for the Experiments view's PNG export and Plot's colour ramps (see index.html).
-    assert.equal(csp, "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; img-src 'self' blob: data:");
+    assert.equal(
+      csp,
+      "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; img-src 'self' blob: data:; object-src 'none'; base-uri 'none'; require-trusted-types-for 'script'; trusted-types torus",
+    );
+    // Trusted Types are enforced, and a violation reaches the harness's
+    // listener (so the zero-violation check of every test can fail).
+    const refused = await page.evaluate(() => {
+      try {
+        document.createElement('div').innerHTML = '<b>x</b>';
+        return false;
+      } catch (e) {
+        return e instanceof TypeError;
+      }
+    });
+    assert.equal(refused, true, 'innerHTML with a string is refused');
+    await page.waitForTimeout(100);
+    const violations = report.consoleErrors.filter((e) => e.startsWith('CSP violation: require-trusted-types-for'));
+    assert.equal(violations.length, 1, report.consoleErrors.join('\n'));
+    report.consoleErrors.splice(0, report.consoleErrors.length, ...report.consoleErrors.filter((e) => !e.includes('TrustedHTML') && !e.startsWith('CSP violation')));
     assert.equal(await page.locator('script:not([src])').count(), 0, 'no inline scripts');
     assert.equal(await page.locator('[onclick], [onload], [onerror], [onchange], [oninput]').count(), 0, 'no inline handlers');
     const origins = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).origin));
