@@ -19,7 +19,7 @@ BENCH_EXP_TRIALS ?= 10
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
-.PHONY: help setup setup-browser build serve test bench dist clean figures \
+.PHONY: help setup setup-browser build serve test bench dist clean figures fuzz \
         _build _dist test-fmt test-clippy test-native test-wasm test-e2e
 
 help:
@@ -29,6 +29,7 @@ help:
 	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
+	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
 	@echo "make figures every experiment's figure into docs/figures/ (about 20 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
@@ -82,6 +83,12 @@ test-wasm:
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
 	node --test --test-concurrency=1 tests/e2e/*.test.mjs
+
+# The property tests with ten times the cases of `make test` and a seed
+# from the clock (printed by fast-check on a failure, to replay it).
+fuzz: build
+	$(call section,property tests, 100000 cases per property (tests/e2e/properties.test.mjs))
+	FC_RUNS=100000 FC_SEED=$$(date +%s) node --test tests/e2e/properties.test.mjs
 
 bench: setup
 	$(call section,cargo bench)

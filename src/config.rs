@@ -1246,9 +1246,80 @@ mod serde_seed {
     }
 }
 
+/// Reads a config from a JSON value (the page's config objects), naming the
+/// parameter at fault: a missing key keeps its default, an unknown key or a
+/// value of the wrong type is an error naming the key and what it allows.
+///
+/// # Errors
+/// A [`ConfigError`] for a value that is not an object, an unknown key, a
+/// value of the wrong type, or (after reading) a value out of range.
+pub fn from_json(value: serde_json::Value) -> Result<Config, ConfigError> {
+    fn shown(v: &serde_json::Value) -> String {
+        let text = v.to_string();
+        match text.char_indices().nth(60) {
+            Some((i, _)) => format!("{}…", &text[..i]),
+            None => text,
+        }
+    }
+    let serde_json::Value::Object(map) = &value else {
+        return Err(ConfigError::new(
+            "config",
+            shown(&value),
+            "an object of parameter values",
+        ));
+    };
+    for (key, v) in map {
+        let Some(p) = PARAMS.iter().find(|p| p.key == key.as_str()) else {
+            let keys: Vec<&str> = PARAMS.iter().map(|p| p.key).collect();
+            return Err(ConfigError::new(
+                "config",
+                format!(
+                    "the key {:?}",
+                    shown(&serde_json::Value::String(key.clone()))
+                ),
+                format!("an object whose keys are among {}", keys.join(", ")),
+            ));
+        };
+        // Reading the key alone tells a type error from a range error, and
+        // which key has it (serde's message does not say).
+        let one: serde_json::Map<String, serde_json::Value> =
+            std::iter::once((key.clone(), v.clone())).collect();
+        if let Err(e) = serde_json::from_value::<Config>(serde_json::Value::Object(one)) {
+            return Err(ConfigError::new(
+                p.key,
+                shown(v),
+                format!("{} ({e})", p.kind.allowed()),
+            ));
+        }
+    }
+    let cfg: Config = serde_json::from_value(value)
+        .map_err(|e| ConfigError::new("config", e, "an object of parameter values"))?;
+    cfg.validate()?;
+    Ok(cfg)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn from_json_names_the_key_at_fault() {
+        let ok = from_json(serde_json::json!({"n": 12, "final": "mean"})).unwrap();
+        assert_eq!((ok.n, ok.final_rule), (12, FinalRule::Mean));
+        let e = from_json(serde_json::json!({"tree_nodes": "xxx"})).unwrap_err();
+        assert_eq!(e.field, "tree_nodes");
+        assert!(e.to_string().contains("an integer in"), "{e}");
+        let e = from_json(serde_json::json!({"n": {"n": 3}})).unwrap_err();
+        assert_eq!(e.field, "n");
+        let e = from_json(serde_json::json!({"__proto__": {"polluted": 1}})).unwrap_err();
+        assert!(e.to_string().contains("__proto__"), "{e}");
+        let e = from_json(serde_json::json!({"n": 2})).unwrap_err();
+        assert_eq!((e.field, e.value.as_str()), ("n", "2"));
+        assert_eq!(
+            from_json(serde_json::json!([1])).unwrap_err().field,
+            "config"
+        );
+    }
 
     #[test]
     fn default_is_valid_and_every_field_has_a_parameter() {

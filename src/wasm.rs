@@ -89,9 +89,9 @@ fn config_from_js(value: JsValue) -> Result<Config, JsError> {
     if !value.is_object() || js_sys::Array::is_array(&value) {
         return Err(JsError::new("config must be an object"));
     }
-    let cfg: Config = from_js(value, "config")?;
-    cfg.validate().map_err(err)?;
-    Ok(cfg)
+    let json: serde_json::Value =
+        serde_wasm_bindgen::from_value(value).map_err(|e| JsError::new(&format!("config: {e}")))?;
+    config::from_json(json).map_err(err)
 }
 
 /// The configuration schema, the searcher registry, the heat layers and the

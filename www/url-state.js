@@ -44,7 +44,7 @@ export function viewSpecs(races) {
     autoplay: {
       def: true,
       help: 'one of 1, 0, true, false, yes, no, on, off',
-      parse: (s) => BOOL[s],
+      parse: (s) => (Object.hasOwn(BOOL, s) ? BOOL[s] : undefined),
       text: (v) => (v ? '1' : '0'),
     },
     race: {
@@ -70,7 +70,7 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
   const pairs = [];
   for (const key of new Set(params.keys())) {
     const raw = params.getAll(key).at(-1); // a repeated key: the last one counts
-    if (key in specs) {
+    if (Object.hasOwn(specs, key)) {
       const v = specs[key].parse(raw.trim());
       if (v === undefined) {
         messages.push(`Invalid ${key}=${JSON.stringify(shown(raw))}: allowed ${specs[key].help}. Using the default ${key}=${specs[key].text(specs[key].def) || '(none)'}.`);
