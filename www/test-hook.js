@@ -59,6 +59,8 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     batch: {
       results: () => batch.results,
       usePool: (k) => batch.usePool(k),
+      killWorker: (i) => batch.pool?.killWorker(i) ?? false,
+      replaced: () => batch.pool?.replaced ?? 0,
     },
     view: () => document.body.dataset.view,
     show: (view) => showView(view),
@@ -74,6 +76,8 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
       lastRun: () => experiments.lastRun,
       workers: () => experiments.runner.workers,
       usePool: (k) => experiments.runner.usePool(k),
+      killWorker: (i) => experiments.runner.pool.killWorker(i),
+      replaced: () => experiments.runner.pool.replaced,
       load: (text, name) => experiments.loadText(text, name),
       exported: async (kind) => {
         const blob = await experiments.exported(kind);

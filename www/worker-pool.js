@@ -9,6 +9,9 @@
 
 import { scriptURL } from './trusted.js';
 
+/** How many times a task is retried on a fresh worker after its worker died. */
+export const MAX_RETRIES = 2;
+
 export class WorkerPool {
   /**
    * @param {number} size   number of workers
@@ -21,14 +24,18 @@ export class WorkerPool {
     this.workers = [];
     this.job = 0;
     this.reject = null;
+    /** Workers replaced after they died, over the pool's life (tests read it). */
+    this.replaced = 0;
+  }
+
+  fresh() {
+    const w = new Worker(scriptURL(new URL('./trial-worker.js', import.meta.url)), { type: 'module' });
+    if (this.module) w.postMessage({ init: this.module });
+    return w;
   }
 
   spawn() {
-    while (this.workers.length < this.size) {
-      const w = new Worker(scriptURL(new URL('./trial-worker.js', import.meta.url)), { type: 'module' });
-      if (this.module) w.postMessage({ init: this.module });
-      this.workers.push(w);
-    }
+    while (this.workers.length < this.size) this.workers.push(this.fresh());
   }
 
   /** Stops every worker (a running job rejects with "stopped"); the next job starts fresh ones. */
@@ -45,14 +52,36 @@ export class WorkerPool {
   }
 
   /**
+   * Fault injection for tests: worker `i` dies mid-task as a crashed worker
+   * does (terminated, then its error event), and the pool must recover.
+   */
+  killWorker(i) {
+    const w = this.workers[i];
+    if (!w) return false;
+    w.terminate();
+    w.dispatchEvent(new ErrorEvent('error', { message: 'worker killed (fault injection)' }));
+    return true;
+  }
+
+  /**
    * Runs `tasks` on the workers. onResult(taskNumber, result, doneCount) is
    * called as tasks finish. Resolves to the results in task order; rejects
    * with the first task's error, or "stopped" after terminate().
+   *
+   * A worker that dies (its error event: a crash, a failed start, the
+   * browser killing it) is replaced by a fresh one, which re-runs the task
+   * the dead one held; a task's result depends only on the task, so the
+   * outcome is unchanged. A task whose worker dies more than MAX_RETRIES
+   * times fails the job. A task that reports an error (a bad config, a wasm
+   * panic) fails the job at once: re-running it would fail the same way.
    */
   runTasks(tasks, onResult = () => {}) {
     this.spawn();
     const id = ++this.job;
     const results = new Array(tasks.length);
+    const retries = new Map(); // task number -> times its worker died
+    const queue = []; // task numbers to run again, before new ones
+    const held = new Map(); // worker -> the task number it runs
     let next = 0;
     let done = 0;
     return new Promise((resolve, reject) => {
@@ -68,23 +97,52 @@ export class WorkerPool {
       };
       this.reject = reject;
       const feed = (w) => {
-        if (next < tasks.length) {
-          const seq = next++;
-          w.postMessage({ id, seq, task: tasks[seq] });
-        }
+        const seq = queue.length ? queue.shift() : next < tasks.length ? next++ : -1;
+        if (seq < 0) return;
+        held.set(w, seq);
+        w.postMessage({ id, seq, task: tasks[seq] });
       };
-      for (const w of this.workers) {
+      const lost = (w, why) => {
+        if (this.job !== id) return;
+        const at = this.workers.indexOf(w);
+        if (at < 0) return;
+        w.terminate();
+        const seq = held.get(w);
+        held.delete(w);
+        if (seq !== undefined) {
+          const n = (retries.get(seq) ?? 0) + 1;
+          retries.set(seq, n);
+          if (n > MAX_RETRIES) {
+            this.discard();
+            finish(reject, new Error(`task ${seq} lost its worker ${n} times (${why}); giving up`));
+            return;
+          }
+          queue.push(seq);
+        }
+        this.replaced++;
+        const fresh = this.fresh();
+        this.workers[at] = fresh;
+        attach(fresh);
+        feed(fresh);
+      };
+      const attach = (w) => {
         w.onmessage = (e) => {
           const m = e.data;
-          if (m.id !== id || this.job !== id) return;
+          // A replaced worker's last words are not this job's.
+          if (m.id !== id || this.job !== id || !this.workers.includes(w)) return;
           if (m.error !== undefined) {
             // A failed task may have left its engine trapped: start the next job on fresh workers.
             this.discard();
             finish(reject, new Error(m.error));
             return;
           }
-          results[m.seq] = m.result;
+          held.delete(w);
+          if (results[m.seq] !== undefined) {
+            feed(w);
+            return;
+          }
           done++;
+          results[m.seq] = m.result;
           feed(w);
           try {
             onResult(m.seq, m.result, done);
@@ -96,10 +154,12 @@ export class WorkerPool {
           if (done === tasks.length) finish(resolve, results);
         };
         w.onerror = (e) => {
-          e.preventDefault();
-          this.discard();
-          finish(reject, new Error(e.message || 'a worker failed to start'));
+          e.preventDefault?.();
+          lost(w, e.message || 'a worker failed');
         };
+      };
+      for (const w of this.workers) {
+        attach(w);
         feed(w);
       }
     });

@@ -118,6 +118,16 @@ test('the page and the CLI give the same result, byte for byte, for any number o
       assert.equal(await runAndWait(page), 'done');
       assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), cli.json, `${k} worker(s)`);
     }
+    // Fault injection: a worker dies mid-run. The pool replaces it and the
+    // fresh worker re-runs its chunk: the same bytes.
+    await page.evaluate(() => window.torusTest.experiments.usePool(2));
+    await page.click('#exp-run');
+    assert.equal(await status(page), 'running');
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.killWorker(0)), true);
+    await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.body.dataset.experiment), null, { timeout: 240_000, polling: 100 });
+    assert.equal(await status(page), 'done', await page.locator('#exp-status').textContent());
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.replaced()), 1, 'one worker was replaced');
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), cli.json, 'a lost worker changes no byte');
     // Downloads: SVG (the chart, with its title) and PNG.
     const svg = await page.evaluate(() => window.torusTest.experiments.exported('svg'));
     assert.match(svg, /^<svg xmlns="http:\/\/www.w3.org\/2000\/svg"/);

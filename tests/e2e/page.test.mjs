@@ -536,6 +536,25 @@ test('batch trials in Web Workers: same results for any number of workers, trial
     await page.evaluate(() => window.torusTest.batch.usePool(3));
     const three = await batch();
     assert.deepEqual(three, one);
+    // Fault injection: a worker dies mid-run. The pool replaces it, re-runs
+    // its trial on the fresh worker, and the results are the same.
+    await page.fill('#batch-trials', '200');
+    const many = await batch();
+    await page.evaluate(() => delete document.body.dataset.batch);
+    await page.click('#batch-run');
+    // Killed in the same task as the progress is read, so surely mid-run.
+    const doneAtKill = await (
+      await page.waitForFunction(() => {
+        const m = /^(\d+) \//.exec(document.getElementById('batch-progress').textContent);
+        return m && Number(m[1]) >= 1 && window.torusTest.batch.killWorker(1) ? Number(m[1]) : false;
+      }, null, { timeout: 60_000, polling: 5 })
+    ).jsonValue();
+    assert.ok(doneAtKill < 200, `killed mid-run (${doneAtKill} of 200 done)`);
+    await page.waitForFunction(() => ['done', 'error', 'stopped'].includes(document.body.dataset.batch), null, { timeout: 120_000 });
+    assert.equal(await page.evaluate(() => document.body.dataset.batch), 'done', await text(page, '#batch-progress'));
+    assert.equal(await page.evaluate(() => window.torusTest.batch.replaced()), 1, 'one worker was replaced');
+    assert.deepEqual(await page.evaluate(() => window.torusTest.batch.results()), many, 'a lost worker changes no result');
+    await page.fill('#batch-trials', '12');
     assert.match(await page.locator('#batch-summary').innerText(), /ASOO/);
     await runToEnd(page);
     const steps = (await mainPath(page)).length - 1;
