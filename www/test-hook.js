@@ -30,7 +30,23 @@
 import { experimentSpec } from './url-state.js';
 
 export function installTestHook({ controller, engine, batch, experiments, showView }) {
+  // What each drawn frame showed, once a test asks (bounded, so a long soak
+  // does not grow it): the reset ticket, and per run its configured start,
+  // the first path cell and the position.
+  let frameLog = null;
+  controller.on('frame', ({ runs }) => {
+    if (!frameLog) return;
+    if (frameLog.length >= 10_000) frameLog.shift();
+    frameLog.push({
+      ticket: controller.resets,
+      runs: runs.map((r) => ({ start: r.start, configStart: r.config.start.join(','), path0: r.pathLen ? r.pathView()[0] : -1, position: r.frame.position, status: r.status() })),
+    });
+  });
   window.torusTest = {
+    watchFrames: () => {
+      frameLog = [];
+    },
+    frameLog: () => frameLog ?? [],
     ready: () => controller.whenReady(),
     state: () => controller.state,
     speed: () => controller.speed,

@@ -336,13 +336,49 @@ test('export JSON then import replays the episode exactly', { timeout: 180_000 }
     const [png] = await Promise.all([page.waitForEvent('download'), page.click('#export-png')]);
     assert.match(png.suggestedFilename(), /\.png$/);
   });
-  await withApp('?autoplay=0&n=33&seed=1', async (page) => {
+  // Imported while a race runs: the file's single run replaces the race.
+  await withApp('?race=rw&n=33&seed=1&speed=max', async (page) => {
+    await page.waitForFunction(() => window.torusTest.runs().length === 2 && window.torusTest.state() === 'running', null, { timeout: 60_000 });
     await page.setInputFiles('#import-json', file);
     await page.waitForFunction(() => document.body.dataset.replay, null, { timeout: 90_000 });
     assert.equal(await page.evaluate(() => document.body.dataset.replay), 'match');
     assert.match(await text(page, '#message'), /Replayed exactly/);
     assert.deepEqual(await mainPath(page), exported.episode.path);
     assert.match(await page.evaluate(() => location.search), /seed=77/);
+    assert.equal((await page.evaluate(() => window.torusTest.runs())).length, 1, 'the race is gone');
+    assert.equal(await page.locator('#board-1').isVisible(), false);
+    assert.doesNotMatch(await page.evaluate(() => location.search), /race=/);
+  });
+});
+
+test('100 configuration changes in 5 s while a search runs: no stale frame, no error, the last one wins', { timeout: 180_000 }, async () => {
+  await withApp('?n=24&sigma=3&speed=max', async (page) => {
+    await page.waitForFunction(() => window.torusTest.state() === 'running', null, { timeout: 60_000 });
+    await page.evaluate(() => window.torusTest.watchFrames());
+    // A new start cell each time: a frame of an older run would begin its
+    // path at an older start than its run view says.
+    for (let i = 0; i < 100; i++) {
+      await page.evaluate((v) => {
+        const el = document.getElementById('start');
+        el.value = v;
+        el.dispatchEvent(new Event('change'));
+      }, `${(i % 24) + 1},${((7 * i) % 24) + 1}`);
+      await page.waitForTimeout(50);
+    }
+    const last = `${(99 % 24) + 1},${((7 * 99) % 24) + 1}`;
+    await page.waitForFunction((want) => {
+      const r = window.torusTest.runs()[0];
+      return r && r.config.start.join(',') === want && r.steps > 0;
+    }, last, { timeout: 60_000 });
+    const log = await page.evaluate(() => window.torusTest.frameLog());
+    assert.ok(log.length > 10, `frames were drawn during the storm (${log.length})`);
+    for (const f of log) {
+      for (const r of f.runs) {
+        assert.equal(r.path0 === -1 || r.path0 === r.start, true, `a frame's path starts at its run's start (${JSON.stringify(f)})`);
+      }
+    }
+    assert.match(await page.evaluate(() => location.search), new RegExp(`start=${last.replace(',', '%2C')}(&|$)`));
+    assert.notEqual(await state(page), 'error');
   });
 });
 
