@@ -351,6 +351,40 @@ test('export JSON then import replays the episode exactly', { timeout: 180_000 }
   });
 });
 
+test('a hidden (minimised) window for 30 s: no burst of frames, no long task, the episode goes on where it was', { timeout: 180_000 }, async () => {
+  await withApp('?speed=10', async (page) => {
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 3, null, { timeout: 60_000 });
+    await page.evaluate(() => {
+      window.__long = [];
+      new PerformanceObserver((l) => window.__long.push(...l.getEntries().map((e) => [Math.round(e.startTime), Math.round(e.duration)]))).observe({ type: 'longtask' });
+    });
+    const cdp = await page.context().newCDPSession(page);
+    const { windowId } = await cdp.send('Browser.getWindowForTarget');
+    await cdp.send('Browser.setWindowBounds', { windowId, bounds: { windowState: 'minimized' } });
+    await page.waitForTimeout(500);
+    const before = await page.evaluate(() => window.torusTest.path());
+    await page.waitForTimeout(30_000);
+    await page.evaluate(() => window.torusTest.watchFrames());
+    const shown = await page.evaluate(() => performance.now());
+    await cdp.send('Browser.setWindowBounds', { windowId, bounds: { windowState: 'normal' } });
+    const t0 = Date.now();
+    await page.waitForTimeout(1000);
+    const log = await page.evaluate(() => window.torusTest.frameLog());
+    const secs = (Date.now() - t0) / 1000;
+    // At most one frame per animation frame: no queue of 30 s of frames.
+    assert.ok(log.length <= 75 * secs, `${log.length} frames in ${secs.toFixed(1)} s after showing the window`);
+    await page.waitForFunction((n) => window.torusTest.path().length > n + 1 || window.torusTest.state() !== 'running', before.length, { timeout: 60_000 });
+    const after = await page.evaluate(() => window.torusTest.path());
+    assert.deepEqual(after.slice(0, before.length), before, 'the same episode goes on');
+    // Tasks over 50 ms happen on these 2 shared cores (software compositing
+    // competes with the search worker); what must not happen is the page
+    // catching up on 30 s of work in one go when it is shown again.
+    const long = (await page.evaluate(() => window.__long)).filter(([t]) => t >= shown - 50);
+    console.log(`# long tasks after showing: ${JSON.stringify(long)}`);
+    assert.deepEqual(long.filter(([, d]) => d > 250), [], `long tasks [start, ms] after showing: ${JSON.stringify(long)}`);
+  });
+});
+
 test('100 configuration changes in 5 s while a search runs: no stale frame, no error, the last one wins', { timeout: 180_000 }, async () => {
   await withApp('?n=24&sigma=3&speed=max', async (page) => {
     await page.waitForFunction(() => window.torusTest.state() === 'running', null, { timeout: 60_000 });
