@@ -56,6 +56,20 @@ pub fn last_panic() -> Option<String> {
     LAST_PANIC.lock().ok().and_then(|s| s.clone())
 }
 
+/// The size of this instance's linear memory in bytes (it only grows): the
+/// soak test watches it.
+#[wasm_bindgen(js_name = memoryBytes)]
+pub fn memory_bytes() -> f64 {
+    #[cfg(target_arch = "wasm32")]
+    {
+        (core::arch::wasm32::memory_size(0) * 65536) as f64
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        0.0
+    }
+}
+
 /// Panics on purpose, so tests can check that a panic reaches the page.
 #[wasm_bindgen(js_name = panicForTest)]
 pub fn panic_for_test(message: &str) {

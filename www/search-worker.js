@@ -15,7 +15,7 @@
 //   stepLoop / stepMove { requests }    one loop / one move on each unfinished run; answers { frames }
 //   export                              answers { runs } (Race.export())
 //   benchLoops { config, loops }        answers { loops, ms }: one timed wasm call
-//   usage                               answers { usage: { wallMs, workMs, frameMs, frames } } since the last call
+//   usage                               answers { usage: { wallMs, workMs, frameMs, frames, memoryBytes } } since the last call
 //   panicForTest { message }            a deliberate wasm panic (the page's error path is tested with it)
 // Every answer carries the run generation `gen`, so the page drops answers
 // meant for runs it has already replaced.
@@ -165,7 +165,7 @@ const HANDLERS = {
   /** Time spent searching and building frames since the last call, and the wall time. */
   usage() {
     const now = performance.now();
-    const u = { ...st.usage, wallMs: now - st.usage.since };
+    const u = { ...st.usage, wallMs: now - st.usage.since, memoryBytes: st.wasm?.memoryBytes() ?? 0 };
     st.usage = { since: now, workMs: 0, frameMs: 0, frames: 0 };
     return { usage: u };
   },

@@ -50,6 +50,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     ready: () => controller.whenReady(),
     state: () => controller.state,
     speed: () => controller.speed,
+    fps: () => controller.meter.fps,
     runs: () =>
       controller.runs.map((r) => ({
         label: r.label,
