@@ -83,6 +83,8 @@ test-wasm:
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
 	node --test --test-concurrency=1 tests/e2e/*.test.mjs
+	$(call section,soak: 2 minutes of varied configurations in one page (tests/e2e/soak.mjs))
+	node tests/e2e/soak.mjs --minutes 2
 
 # The property tests with ten times the cases of `make test` and a seed
 # from the clock (printed by fast-check on a failure, to replay it).
