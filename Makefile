@@ -91,6 +91,8 @@ test-e2e:
 fuzz: build
 	$(call section,property tests, 100000 cases per property (tests/e2e/properties.test.mjs))
 	FC_RUNS=100000 FC_SEED=$$(date +%s) node --test tests/e2e/properties.test.mjs
+	$(call section,CLI property test, 100000 argument vectors (tests/cli_properties.rs))
+	CLI_CASES=100000 cargo test $(LOCKED) --release --test cli_properties -- --nocapture
 
 bench: setup
 	$(call section,cargo bench)

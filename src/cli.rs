@@ -872,9 +872,31 @@ pub fn main() -> i32 {
     let matches = match command().try_get_matches() {
         Ok(m) => m,
         Err(e) => {
-            let code = e.exit_code();
-            let _ = e.print();
-            return code;
+            use clap::error::ErrorKind;
+            return match e.kind() {
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+                    let _ = e.print();
+                    0
+                }
+                ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+                    eprintln!(
+                        "error: a command is required: run, experiment, merge or bench (see --help)"
+                    );
+                    2
+                }
+                // Usage errors are one line, as every other error here:
+                // clap's message up to its usage block, lines joined.
+                _ => {
+                    let text = e.to_string();
+                    let message: Vec<&str> = text
+                        .lines()
+                        .map(str::trim)
+                        .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))
+                        .collect();
+                    eprintln!("{} (see --help)", message.join(" "));
+                    2
+                }
+            };
         }
     };
     let r = match matches.subcommand() {
