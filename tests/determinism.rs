@@ -109,16 +109,18 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// The `code` case was added with that variant (issue 10); the others are
 /// unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
-/// into the config changed no draw.
+/// into the config changed no draw. The four Lévy and NSARW cases were
+/// re-pinned in issue 11 when those walks became table-driven: the same laws
+/// from different random draws.
 const PINNED: [u64; 10] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
-    0x7282bdec7ebf2054,
-    0xf22752ae40beaa2d,
+    0xd0c17705468deac1,
+    0xad290e76577c6dec,
     0x4292b8697b437811,
     0x30e670e25ce766d9,
-    0x504ae0d31199c260,
-    0x36e45bc50047197e,
+    0x283abe04e107336b,
+    0xd1c695864a83249c,
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
 ];

@@ -16,7 +16,7 @@ use torus_search::episode::{Episode, Status};
 use torus_search::lattice::{Move, Sensor, Torus};
 use torus_search::prior::{PriorKind, PriorSpec, TargetPrior};
 use torus_search::rng;
-use torus_search::searchers::{flight_length, NoVisit, Policy, PolicyKind};
+use torus_search::searchers::{flight_end, Directions, FlightLengths, NoVisit, Policy, PolicyKind};
 use torus_search::stats::MeanCi;
 use torus_search::theory;
 use torus_search::view::Layer;
@@ -329,9 +329,10 @@ fn levy_flight_lengths_follow_the_power_law() {
     const DRAWS: usize = 40_000;
     for (k, mu) in [1.5f64, 2.0, 2.5].into_iter().enumerate() {
         let mut r = rng::stream(400, k as u64);
+        let law = FlightLengths::new(mu, 1e12);
         let mut sum_ln = 0.0;
         for _ in 0..DRAWS {
-            let l = flight_length(&mut r, mu, 1e12);
+            let l = law.sample(&mut r);
             assert!((1.0..=1e12).contains(&l), "length {l}");
             sum_ln += l.ln();
         }
@@ -358,7 +359,8 @@ fn levy_flight_lengths_capped_at_n_follow_the_truncated_law() {
         .enumerate()
     {
         let mut r = rng::stream(500, k as u64);
-        let mut ls: Vec<f64> = (0..DRAWS).map(|_| flight_length(&mut r, mu, n)).collect();
+        let law = FlightLengths::new(mu, n);
+        let mut ls: Vec<f64> = (0..DRAWS).map(|_| law.sample(&mut r)).collect();
         assert!(
             ls.iter().all(|&l| (1.0..=n).contains(&l)),
             "μ={mu} N={n}: a length outside [1, N]"
@@ -388,6 +390,96 @@ fn levy_flight_lengths_capped_at_n_follow_the_truncated_law() {
             .map(|(i, &l)| ((1.0 - l.powf(-a)) - (i + 1) as f64 / nf).abs())
             .fold(0.0, f64::max);
         assert!(d_untrunc * nf.sqrt() > 2.23);
+    }
+}
+
+/// The exact law of a flight's rounded end point: P(i, j) for L from the
+/// truncated Pareto law on [1, cap] and Θ uniform, by integrating over Θ
+/// (midpoint rule, `m` angles) the length probability F(l_hi) − F(l_lo) of
+/// each stretch of the ray that rounds to one cell. The integrand is
+/// continuous in Θ, so the rule's error is far below the test's resolution.
+fn end_point_law(mu: f64, cap: f64, m: usize) -> std::collections::BTreeMap<(i64, i64), f64> {
+    let a = mu - 1.0;
+    let cdf = |l: f64| (1.0 - l.powf(-a)) / (1.0 - cap.powf(-a));
+    let mut p = std::collections::BTreeMap::new();
+    let mut cuts = Vec::new();
+    for k in 0..m {
+        let th = 2.0 * std::f64::consts::PI * (k as f64 + 0.5) / m as f64;
+        let (s, c) = th.sin_cos();
+        cuts.clear();
+        cuts.extend([1.0, cap]);
+        for d in [c, s] {
+            // Lengths where l·d crosses a half-integer.
+            let mut h = 0.5;
+            while h / d.abs() < cap {
+                if h / d.abs() > 1.0 {
+                    cuts.push(h / d.abs());
+                }
+                h += 1.0;
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        for w in cuts.windows(2) {
+            let mid = 0.5 * (w[0] + w[1]);
+            let cell = ((mid * c).round() as i64, (mid * s).round() as i64);
+            *p.entry(cell).or_insert(0.0) += (cdf(w[1]) - cdf(w[0])) / m as f64;
+        }
+    }
+    p
+}
+
+#[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
+fn levy_flight_end_points_follow_the_rounded_continuous_law() {
+    // The table-driven sampler (length bins with an alias table and
+    // rejection, cos and sin from a table and polynomials) against the exact law
+    // of (round(L cos Θ), round(L sin Θ)), the law of the pow/sin/cos
+    // sampler it replaced, by χ² on every end point (cells with expected
+    // count < 5 merged). Angles confined to a quarter turn (a wrong table
+    // index), or an exponent off by 0.1, fail it (checked once with the
+    // sampler broken; the exponent also below).
+    const DRAWS: usize = 200_000;
+    for (k, (mu, cap)) in [(2.0f64, 8.0f64), (1.3, 12.0), (3.0, 5.0)]
+        .into_iter()
+        .enumerate()
+    {
+        let law = FlightLengths::new(mu, cap);
+        let dirs = Directions::new();
+        let mut r = rng::stream(450, k as u64);
+        let mut counts = std::collections::BTreeMap::new();
+        for _ in 0..DRAWS {
+            *counts
+                .entry(flight_end(&law, &dirs, &mut r))
+                .or_insert(0u64) += 1;
+        }
+        let exact = end_point_law(mu, cap, 1 << 15);
+        let total: f64 = exact.values().sum();
+        assert!((total - 1.0).abs() < 1e-9, "the exact law sums to {total}");
+        for cell in counts.keys() {
+            assert!(
+                exact.contains_key(cell),
+                "μ={mu}: end point {cell:?} has probability 0"
+            );
+        }
+        let cells: Vec<(i64, i64)> = exact.keys().copied().collect();
+        let obs: Vec<u64> = cells.iter().map(|c| *counts.get(c).unwrap_or(&0)).collect();
+        let p: Vec<f64> = cells.iter().map(|c| exact[c]).collect();
+        let (stat, df) = chi2_merged(&obs, &p);
+        println!(
+            "Lévy end points μ={mu} cap={cap}: χ² {stat:.1} on {df} df ({} cells)",
+            cells.len()
+        );
+        assert!(
+            stat < chi2_crit_1e4(df),
+            "μ={mu} cap={cap}: χ² {stat} on {df} df"
+        );
+        // Power: the same draws reject the law of an exponent 0.1 larger.
+        let wrong = end_point_law(mu + 0.1, cap, 1 << 12);
+        let pw: Vec<f64> = cells.iter().map(|c| wrong[c]).collect();
+        let (stat_w, df_w) = chi2_merged(&obs, &pw);
+        assert!(
+            stat_w > chi2_crit_1e4(df_w),
+            "μ={mu}: χ² {stat_w} against μ + 0.1"
+        );
     }
 }
 

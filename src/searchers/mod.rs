@@ -16,7 +16,7 @@ mod policy;
 mod random_walk;
 
 pub use greedy::Greedy;
-pub use levy::{flight_length, Levy};
+pub use levy::{flight_end, Directions, FlightLengths, Levy};
 pub use nsarw::Nsarw;
 pub use policy::{NoVisit, Outcome, Policy, PolicyKind, Visit};
 pub use random_walk::RandomWalk;

@@ -128,7 +128,9 @@ impl Policy {
     ) -> Outcome {
         match self {
             Policy::Rw(w) => w.rollout(torus, mask, rng, start, cap, visit),
-            _ => {
+            Policy::Levy(l) => l.rollout(torus, mask, rng, start, cap, visit),
+            Policy::Nsarw(w) => w.rollout(torus, mask, rng, start, cap, visit),
+            Policy::Greedy(_) => {
                 if mask[start as usize] != 0 {
                     return Outcome {
                         steps: 0,
