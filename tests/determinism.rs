@@ -135,7 +135,7 @@ const PINNED: [u64; 11] = [
     0x36e45bc50047197e,
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
-    0x0,
+    0x38afd6dc74bcfd8f,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

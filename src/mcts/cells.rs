@@ -281,8 +281,8 @@ mod tests {
         for _ in 0..10 {
             t.belief_changed();
         }
-        assert_eq!(t.visits[3], 81);
-        assert!((t.reward[3] / 81.0 - 0.03).abs() < 1e-12);
+        assert_eq!(t.visits[3], 84);
+        assert!((t.reward[3] / 84.0 - 0.03).abs() < 1e-12);
     }
 
     #[test]
