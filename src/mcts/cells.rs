@@ -289,7 +289,10 @@ mod tests {
     fn decay_one_is_the_papers_table_and_zero_clears_it() {
         let mut keep = table(1.0);
         keep.belief_changed();
-        assert_eq!((keep.visits, keep.reward), (table(1.0).visits, table(1.0).reward));
+        assert_eq!(
+            (keep.visits, keep.reward),
+            (table(1.0).visits, table(1.0).reward)
+        );
         let mut clear = table(0.0);
         clear.belief_changed();
         assert_eq!((clear.visits, clear.reward), (vec![0; 4], vec![0.0; 4]));
