@@ -9,6 +9,7 @@
 
 use crate::belief::Belief;
 use crate::lattice::{Torus, MAX_N, MIN_N};
+use crate::mcts::cells::DEFAULT_DECAY;
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::preset::Preset;
@@ -71,6 +72,9 @@ pub struct Config {
     pub step_cap: u32,
     /// `cells`: clear the statistics table before each real move.
     pub reset_each_move: bool,
+    /// `cells`: the factor the table's counts are multiplied by whenever the
+    /// belief changes (1 keeps them for ever, as the paper does).
+    pub decay: f64,
     /// `tree`: arena cap in nodes.
     pub tree_nodes: u32,
     /// How many recent rollout traces to keep for drawing (0 = none).
@@ -706,6 +710,20 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.reset_each_move = flag(v),
     },
     Param {
+        key: "decay",
+        kind: Kind::Float {
+            min: 0.0,
+            max: 1.0,
+            min_open: false,
+        },
+        default: Value::Float(DEFAULT_DECAY),
+        help: "cells: when a move searches new cells, each table count is multiplied by this (rounded down, the mean kept), so stale statistics fade; 1 keeps them for ever (the paper), 0 clears them",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Float(c.decay),
+        set: |c, v| c.decay = float(v),
+    },
+    Param {
         key: "tree_nodes",
         kind: Kind::Int {
             min: MIN_MAX_NODES as u64,
@@ -774,6 +792,7 @@ impl Default for Config {
             rollout_cap: 0,
             step_cap: 0,
             reset_each_move: false,
+            decay: 1.0,
             tree_nodes: 0,
             keep_traces: 0,
             seed: 0,

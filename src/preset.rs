@@ -27,7 +27,8 @@ impl Preset {
             // location, a practice target "placed according to the known
             // distribution" (the prior), "the best move" read as the most
             // selected child, no step or rollout cap given (the code's
-            // 10 000 is used so runs end).
+            // 10 000 is used so runs end). The table is never decayed
+            // (decay 1: the paper keeps it for the whole trial).
             Preset::PaperText => &[
                 ("searcher", "mcts"),
                 ("variant", "cells"),
@@ -35,6 +36,7 @@ impl Preset {
                 ("c", "1.4142135623730951"),
                 ("final", "visits"),
                 ("reset_each_move", "0"),
+                ("decay", "1"),
                 ("rollout_cap", "10000"),
                 ("step_cap", "10000"),
             ],
@@ -45,6 +47,7 @@ impl Preset {
                 ("c", "2"),
                 ("final", "uct"),
                 ("reset_each_move", "0"),
+                ("decay", "1"),
                 ("rollout_cap", "10000"),
                 ("step_cap", "10000"),
             ],

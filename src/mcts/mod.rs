@@ -29,13 +29,17 @@ pub static INFO: SearcherInfo = SearcherInfo {
         }
         "loops" => c.ms.is_none(),
         "reset_each_move" => c.variant != Variant::Tree,
+        "decay" => c.variant == Variant::Cells,
         "tree_nodes" => c.variant == Variant::Tree,
         "mu" => c.rollout == crate::searchers::PolicyKind::Levy,
         "epsilon" => c.rollout == crate::searchers::PolicyKind::Greedy,
         _ => false,
     },
     build: |s| match s.cfg.variant {
-        Variant::Cells => Box::new(Mcts::new(CellTable::new(s.torus.cells()), s)),
+        Variant::Cells => Box::new(Mcts::new(
+            CellTable::with_decay(s.torus.cells(), s.cfg.decay),
+            s,
+        )),
         Variant::Tree => Box::new(Mcts::new(Tree::new(s.cfg.tree_nodes), s)),
         Variant::Code => Box::new(Mcts::new(CodeTable::new(s.torus.cells()), s)),
     },
@@ -202,6 +206,9 @@ pub trait Stats {
     /// Visit counts per cell of a lattice of `cells` cells (`scratch` is
     /// room to project a tree into).
     fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32];
+    /// The belief changed since the last decision (a move searched new
+    /// cells): statistics gathered for the old belief are now stale.
+    fn belief_changed(&mut self) {}
 }
 
 /// UCT search with a variant's statistics and a rollout policy.
@@ -213,6 +220,8 @@ pub struct Mcts<S: Stats> {
     rollout_cap: u32,
     reset_each_move: bool,
     cells: usize,
+    /// The belief's generation at the last decision.
+    generation: Option<u64>,
 }
 
 impl<S: Stats> Mcts<S> {
@@ -227,6 +236,7 @@ impl<S: Stats> Mcts<S> {
             rollout_cap: cfg.rollout_cap,
             reset_each_move: cfg.reset_each_move,
             cells: setup.torus.cells(),
+            generation: None,
         }
     }
 }
@@ -235,6 +245,11 @@ impl<S: Stats> Searcher for Mcts<S> {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
         if !w.budget.is_open() {
             w.budget.open();
+            let generation = w.belief.generation();
+            if self.generation.is_some_and(|g| g != generation) {
+                self.stats.belief_changed();
+            }
+            self.generation = Some(generation);
             self.stats.begin_decision(w.pos, self.reset_each_move);
         }
         let mut done = 0;
