@@ -102,6 +102,30 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            "sweep",
+            Config {
+                searcher: searcher("sweep"),
+                ..small()
+            },
+        ),
+        (
+            "horizon",
+            Config {
+                searcher: searcher("horizon"),
+                horizon: 4,
+                ..small()
+            },
+        ),
+        (
+            "improve best",
+            Config {
+                searcher: searcher("improve"),
+                horizon: 3,
+                prior: PriorKind::Uniform,
+                ..small()
+            },
+        ),
     ]
 }
 
@@ -110,7 +134,7 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
 /// into the config changed no draw.
-const PINNED: [u64; 10] = [
+const PINNED: [u64; 13] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0x7282bdec7ebf2054,
@@ -121,6 +145,9 @@ const PINNED: [u64; 10] = [
     0x36e45bc50047197e,
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
+    0,
+    0,
+    0,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]
