@@ -61,7 +61,12 @@ impl Coverage {
     /// # Panics
     /// When `cell` is off the lattice this was built for.
     #[inline]
-    pub fn cover_counted(&mut self, sensor: &Sensor, belief: &BeliefState, cell: u32) -> (f64, u32) {
+    pub fn cover_counted(
+        &mut self,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cell: u32,
+    ) -> (f64, u32) {
         let searched = belief.searched();
         let mass = belief.plan_mass();
         let mut gain = 0.0;

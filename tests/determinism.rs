@@ -130,8 +130,9 @@ fn cases() -> Vec<(&'static str, Config)> {
 }
 
 /// The pinned fingerprints, in `cases()` order (seed 2026, 4 trials each).
-/// The `code` case was added with that variant (issue 10); the others are
-/// unchanged.
+/// The `code` case was added with that variant (issue 10), the sweep,
+/// horizon and improve cases with those planners (issue 11); the others
+/// are unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
 /// into the config changed no draw.
 const PINNED: [u64; 13] = [
@@ -145,9 +146,9 @@ const PINNED: [u64; 13] = [
     0x36e45bc50047197e,
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
-    0,
-    0,
-    0,
+    0xa43971504d971172,
+    0xec1f7e9f227ae3a8,
+    0x2f8ace8c33995f53,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

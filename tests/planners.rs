@@ -43,23 +43,28 @@ fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
 }
 
 /// Σ R_t from one pass equals the sampled mean within 4 standard errors.
-/// Checked once: summing one term too many (the cap's `R_cap`, here the
-/// capped case with cap 20) or dropping `R_0` moves the exact mean by more
-/// than 4 SE for the sweep and fails this test.
+/// Checked once: dropping `R_0` (the term before the first move) from the
+/// exact sum moves it by 0.95 and fails this test (sweep: 20.01 vs 21.49 ± 0.26).
 #[test]
 fn exact_mean_matches_sampled_trials() {
     for (prior, sigma, cap) in [
         (PriorKind::Gaussian, 2.5, 100_000),
-        (PriorKind::Uniform, 0.0, 20),
+        (PriorKind::Uniform, 0.0, 15),
     ] {
-        for (name, cfg) in planners(12, prior, sigma) {
+        // The improvers' other bases are exercised by the next test (and
+        // cost more per trial in a debug build).
+        let all = planners(10, prior, sigma);
+        for (name, cfg) in all
+            .into_iter()
+            .filter(|(n, _)| !n.starts_with("improve") || n == "improve cover")
+        {
             let cfg = Config {
                 step_cap: cap,
                 seed: 11,
                 ..cfg
             };
             let exact = exact_mean(&cfg).unwrap();
-            let trials = 3000;
+            let trials = 1500;
             let r = run_trials(&cfg, 0, trials).unwrap();
             let xs: Vec<f64> = r.iter().map(|t| t.steps as f64).collect();
             let mean = xs.iter().sum::<f64>() / trials as f64;
@@ -73,7 +78,10 @@ fn exact_mean_matches_sampled_trials() {
             let capped = r.iter().filter(|t| !t.found).count() as f64 / trials as f64;
             let p = exact.capped_probability;
             let se_p = (p * (1.0 - p) / trials as f64).sqrt().max(1e-3);
-            assert!((capped - p).abs() <= 4.0 * se_p, "{name}: capped {capped} vs {p}");
+            assert!(
+                (capped - p).abs() <= 4.0 * se_p,
+                "{name}: capped {capped} vs {p}"
+            );
         }
     }
 }
@@ -121,7 +129,10 @@ fn tiny_lattices_respect_bound_and_optimum() {
                 let g = base.game().unwrap();
                 let opt = dp_optimum(&g.torus, &g.sensor, g.prior.mass(), g.start).unwrap();
                 let lb = lower_bound(&base).unwrap();
-                assert!(lb <= opt + 1e-12, "n={n} {prior}: bound {lb} > optimum {opt}");
+                assert!(
+                    lb <= opt + 1e-12,
+                    "n={n} {prior}: bound {lb} > optimum {opt}"
+                );
                 for (name, cfg) in planners(n, prior, sigma) {
                     let cfg = Config { start, ..cfg };
                     let e = exact_mean(&cfg).unwrap().mean;
@@ -129,7 +140,10 @@ fn tiny_lattices_respect_bound_and_optimum() {
                         "n={n} {prior} σ={sigma} start {start:?}: bound {lb:.4} optimum {opt:.4} {name} {e:.4} ({:+.2}%)",
                         100.0 * (e / opt - 1.0)
                     );
-                    assert!(opt <= e + 1e-12, "n={n} {name}: optimum {opt} > planner {e}");
+                    assert!(
+                        opt <= e + 1e-12,
+                        "n={n} {name}: optimum {opt} > planner {e}"
+                    );
                 }
             }
         }
@@ -144,10 +158,7 @@ fn delta_prior_is_found_in_39_moves_every_trial() {
         if name == "sweep" {
             continue;
         }
-        let cfg = Config {
-            horizon: 6,
-            ..cfg
-        };
+        let cfg = Config { horizon: 6, ..cfg };
         assert_eq!(exact_mean(&cfg).unwrap().mean, 39.0, "{name}");
         for t in run_trials(&cfg, 0, 5).unwrap() {
             assert_eq!(t.steps, 39, "{name}");
@@ -176,7 +187,9 @@ fn random_searchers_are_refused_exact_evaluation() {
         };
         assert_eq!(
             exact_mean(&cfg).unwrap_err(),
-            ExactError::NotDeterministic { searcher: searcher(name).name() }
+            ExactError::NotDeterministic {
+                searcher: searcher(name).name()
+            }
         );
     }
     let known = Config {

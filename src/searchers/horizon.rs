@@ -13,8 +13,8 @@
 //!
 //! **Fallback.** Beyond the horizon the planner is blind, so it compares
 //! the best sequence's rate `G/h` (`G`: the mass it covers) with the best
-//! far goal: the cell maximising (uncovered mass in its disc) ÷ (distance
-//! + 1), an O(N²·disc) scan. When the goal's value is larger (in particular
+//! far goal: the cell maximising (uncovered mass in its disc) ÷
+//! (distance + 1), an O(N²·disc) scan. When the goal's value is larger (in particular
 //! when nothing within reach adds mass) it steps straight toward the goal.
 //!
 //! The planner is deterministic: its path depends only on the belief, so
@@ -167,7 +167,17 @@ impl Lookahead {
             let cp = cov.checkpoint();
             let g = cov.cover(sensor, belief, q);
             self.cur[k as usize] = q;
-            self.dfs(torus, sensor, belief, cov, q, m, k + 1, acc + w * g, gain + g);
+            self.dfs(
+                torus,
+                sensor,
+                belief,
+                cov,
+                q,
+                m,
+                k + 1,
+                acc + w * g,
+                gain + g,
+            );
             cov.undo(cp);
         }
     }
@@ -195,11 +205,9 @@ pub fn decide(
     }
     let rate = found.gain / look.depth() as f64;
     match fallback_target(torus, sensor, belief, cov, pos) {
-        Some((goal, v)) if found.gain <= 0.0 || v > rate => (
-            toward(torus, pos, goal, found.first),
-            found,
-            Some(goal),
-        ),
+        Some((goal, v)) if found.gain <= 0.0 || v > rate => {
+            (toward(torus, pos, goal, found.first), found, Some(goal))
+        }
         _ => (found.first, found, None),
     }
 }

@@ -176,7 +176,15 @@ impl Improve {
         let mut waypoint = self.sweep_from;
         if let Some(m) = first {
             let q = torus.step(p, m);
-            advance(sensor, belief, &mut self.cov, &mut left, &mut sum, &mut self.scratch, q);
+            advance(
+                sensor,
+                belief,
+                &mut self.cov,
+                &mut left,
+                &mut sum,
+                &mut self.scratch,
+                q,
+            );
             p = q;
             last = Some(m);
             walk = CoverWalk::new(last);
@@ -196,11 +204,29 @@ impl Improve {
                     }
                 }
                 Base::Horizon => {
-                    decide(&mut self.look, torus, sensor, belief, &mut self.cov, p, last, false).0
+                    decide(
+                        &mut self.look,
+                        torus,
+                        sensor,
+                        belief,
+                        &mut self.cov,
+                        p,
+                        last,
+                        false,
+                    )
+                    .0
                 }
             };
             let q = torus.step(p, m);
-            advance(sensor, belief, &mut self.cov, &mut left, &mut sum, &mut self.scratch, q);
+            advance(
+                sensor,
+                belief,
+                &mut self.cov,
+                &mut left,
+                &mut sum,
+                &mut self.scratch,
+                q,
+            );
             p = q;
             last = Some(m);
         }
@@ -230,12 +256,10 @@ impl Improve {
 impl Searcher for Improve {
     fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
         let (torus, sensor, belief, pos) = (w.torus, &*w.sensor, &*w.belief, w.pos);
-        while self.sweep_from < self.sweep.len()
-            && {
-                self.cov.clear();
-                self.cov.gain(sensor, belief, self.sweep[self.sweep_from]) <= 0.0
-            }
-        {
+        while self.sweep_from < self.sweep.len() && {
+            self.cov.clear();
+            self.cov.gain(sensor, belief, self.sweep[self.sweep_from]) <= 0.0
+        } {
             self.sweep_from += 1;
         }
         let start = left_of(belief);
@@ -247,8 +271,8 @@ impl Searcher for Improve {
             Base::Sweep => &SINGLE[1..2],
             Base::Horizon => &SINGLE[2..3],
         };
-        let fresh = self.inc_at >= self.incumbent.len()
-            || torus.l1(pos, self.incumbent[self.inc_at]) != 1;
+        let fresh =
+            self.inc_at >= self.incumbent.len() || torus.l1(pos, self.incumbent[self.inc_at]) != 1;
         let mut inc = f64::INFINITY;
         if fresh {
             // The base's own path (the cheapest base's, with `best`).
@@ -272,7 +296,7 @@ impl Searcher for Improve {
             for m in Move::ALL {
                 for &b in bases {
                     let c = self.complete(torus, sensor, belief, pos, Some(m), b, start, limit);
-                    if !(score[m as usize] <= c) {
+                    if score[m as usize].is_nan() || c < score[m as usize] {
                         score[m as usize] = c;
                     }
                     if c < cheapest {

@@ -20,11 +20,11 @@ mod random_walk;
 mod sweep;
 
 pub use greedy::Greedy;
+pub use horizon::{Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
+pub use improve::{base_mean, Base, Improve};
 pub use levy::{flight_length, Levy};
 pub use nsarw::Nsarw;
 pub use policy::{NoVisit, Outcome, Policy, PolicyKind, Visit};
-pub use horizon::{Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
-pub use improve::{base_mean, Base, Improve};
 pub use random_walk::RandomWalk;
 pub use sweep::{sweep_path, Sweep, SweepPattern};
 

@@ -118,9 +118,7 @@ impl CoverWalk {
         let m = if best.0 > 0.0 {
             best.1
         } else {
-            let stale = self
-                .goal
-                .is_none_or(|g| cov.gain(sensor, belief, g) <= 0.0);
+            let stale = self.goal.is_none_or(|g| cov.gain(sensor, belief, g) <= 0.0);
             if stale {
                 self.goal = cell_goal(torus, belief, cov, pos);
             }
