@@ -80,7 +80,7 @@ pub struct Config {
     /// Rollout improvement: the base policy it completes searches with.
     pub base: Base,
     /// The sweep's pattern.
-    pub sweep: SweepPattern,
+    pub sweep_pattern: SweepPattern,
     /// The seed: trial i of a batch draws from streams derived from (seed, i).
     #[serde(with = "serde_seed")]
     pub seed: u64,
@@ -758,14 +758,14 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.base = Base::parse(name(v)).unwrap_or(c.base),
     },
     Param {
-        key: "sweep",
+        key: "sweep_pattern",
         kind: Kind::Choice(|| SweepPattern::NAMES.to_vec()),
         default: Value::Name(Cow::Borrowed("lawnmower")),
         help: "the sweep's pattern: lawnmower (passes alternately right and left) or helix (always right)",
         applies: Applies::Searcher,
         aliases: &[],
-        get: |c| Value::Name(Cow::Borrowed(c.sweep.name())),
-        set: |c, v| c.sweep = SweepPattern::parse(name(v)).unwrap_or(c.sweep),
+        get: |c| Value::Name(Cow::Borrowed(c.sweep_pattern.name())),
+        set: |c, v| c.sweep_pattern = SweepPattern::parse(name(v)).unwrap_or(c.sweep_pattern),
     },
     Param {
         key: "seed",
@@ -817,7 +817,7 @@ impl Default for Config {
             keep_traces: 0,
             horizon: 0,
             base: Base::Best,
-            sweep: SweepPattern::Lawnmower,
+            sweep_pattern: SweepPattern::Lawnmower,
             seed: 0,
         };
         for p in PARAMS {

@@ -63,8 +63,8 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--base must be one of cover, sweep, horizon, best, got astar",
         ),
         (
-            &["run", "--searcher", "sweep", "--sweep", "spiral"],
-            "--sweep must be one of lawnmower, helix, got spiral",
+            &["run", "--searcher", "sweep", "--sweep-pattern", "spiral"],
+            "--sweep-pattern must be one of lawnmower, helix, got spiral",
         ),
         (
             &["run", "--searcher", "rw", "--exact"],

@@ -198,3 +198,31 @@ fn random_searchers_are_refused_exact_evaluation() {
     };
     assert_eq!(exact_mean(&known).unwrap_err(), ExactError::Known);
 }
+
+/// Cost per move of each planner at N = 40 and N = 256 (σ = 10, the first
+/// `moves` moves of trial 0). Speed is measured, never asserted: run with
+/// `cargo test --release --test planners -- --ignored --nocapture cost`.
+#[test]
+#[ignore]
+fn cost_per_move() {
+    use torus_search::episode::Episode;
+    for n in [40, 256] {
+        for (name, cfg) in planners(n, PriorKind::Gaussian, n as f64 / 4.0) {
+            let cfg = Config {
+                horizon: if name == "horizon" { 6 } else { 3 },
+                ..cfg
+            };
+            let moves = if name.starts_with("improve") { 10 } else { 200 };
+            let mut ep = Episode::blind(&cfg).unwrap();
+            let t = std::time::Instant::now();
+            for _ in 0..moves {
+                ep.step_move();
+            }
+            let ms = t.elapsed().as_secs_f64() * 1e3 / moves as f64;
+            println!(
+                "N={n} {name} (horizon {}): {ms:.3} ms per move",
+                cfg.horizon
+            );
+        }
+    }
+}

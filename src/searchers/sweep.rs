@@ -38,8 +38,15 @@ pub static INFO: SearcherInfo = SearcherInfo {
     label: "Sweep",
     help: "a fixed lawnmower or helix over the whole torus from the start, ignoring the prior",
     deliberates: false,
-    uses: |_, key| key == "sweep",
-    build: |s| Box::new(Sweep::new(s.torus, &s.sensor(), s.start, s.cfg.sweep)),
+    uses: |_, key| key == "sweep_pattern",
+    build: |s| {
+        Box::new(Sweep::new(
+            s.torus,
+            &s.sensor(),
+            s.start,
+            s.cfg.sweep_pattern,
+        ))
+    },
 };
 
 /// How far the sensor reaches along an axis.
