@@ -750,8 +750,8 @@ pub static PARAMS: &[Param] = &[
     Param {
         key: "base",
         kind: Kind::Choice(|| Base::NAMES.to_vec()),
-        default: Value::Name(Cow::Borrowed("best")),
-        help: "rollout improvement's base policy: cover (greedy coverage), sweep (the lawnmower, covered stretches skipped), horizon, or best (all three)",
+        default: Value::Name(Cow::Borrowed("cover")),
+        help: "rollout improvement's base policy: cover (greedy coverage, the cheapest), sweep (the lawnmower, covered stretches skipped), horizon (depth horizon; slow), or best (all three; slow)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Name(Cow::Borrowed(c.base.name())),
@@ -816,7 +816,7 @@ impl Default for Config {
             tree_nodes: 0,
             keep_traces: 0,
             horizon: 0,
-            base: Base::Best,
+            base: Base::Cover,
             sweep_pattern: SweepPattern::Lawnmower,
             seed: 0,
         };

@@ -121,6 +121,7 @@ fn cases() -> Vec<(&'static str, Config)> {
             "improve best",
             Config {
                 searcher: searcher("improve"),
+                base: torus_search::searchers::Base::Best,
                 horizon: 3,
                 prior: PriorKind::Uniform,
                 ..small()
