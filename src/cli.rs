@@ -15,6 +15,7 @@ use torus_search::batch;
 use torus_search::bound;
 use torus_search::config::{self, Config, ConfigError, Kind, PARAMS, TRIALS};
 use torus_search::episode::{Episode, TrialResult};
+use torus_search::exact;
 use torus_search::experiment::{self, Plan, ResultSet, Shard, Spec, SpecError};
 use torus_search::mcts::Variant;
 use torus_search::preset::Preset;
@@ -150,6 +151,12 @@ fn run_command() -> Command {
             .long("json")
             .action(ArgAction::SetTrue)
             .help("print exactly one JSON object: the summary, how it ran, and the config"),
+    )
+    .arg(
+        Arg::new("exact")
+            .long("exact")
+            .action(ArgAction::SetTrue)
+            .help("deterministic searchers only: one pass along the searcher's path gives E[min(T, step cap)] exactly, instead of sampling trials"),
     )
     .arg(
         Arg::new("dry-run")
@@ -348,6 +355,9 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
     let trials = TRIALS
         .int_value(m.get_one::<String>(TRIALS.key).map(String::as_str))
         .map_err(usage)?;
+    if m.get_flag("exact") {
+        return run_exact(&cfg, m.get_flag("json"));
+    }
     let (threads, pool) = thread_pool(m)?;
     let t0 = Instant::now();
     let results: Vec<TrialResult> = with_progress(&pool, 0..trials, "trials", |i| {
@@ -374,6 +384,53 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
     } else {
         print_table(&cfg, &s, lower_bound, seconds, threads);
     }
+    Ok(())
+}
+
+/// `run --exact`: the exact mean of a deterministic searcher.
+fn run_exact(cfg: &Config, json: bool) -> Result<(), UsageError> {
+    let t0 = Instant::now();
+    let exact = exact::exact_mean(cfg).map_err(|e| match e {
+        exact::ExactError::Config(e) => usage(e),
+        e => UsageError(e.to_string()),
+    })?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let lower_bound = bound::lower_bound_capped(cfg).map_err(usage)?;
+    let mean_over_bound = (lower_bound > 0.0).then(|| exact.mean / lower_bound);
+    if json {
+        let report = exact::ExactReport {
+            exact,
+            lower_bound,
+            mean_over_bound,
+            seconds,
+            seed: cfg.seed,
+            config: cfg,
+        };
+        out!(
+            "{}",
+            serde_json::to_string(&report).expect("a report serialises")
+        );
+        return Ok(());
+    }
+    out!(
+        "torus-search: N={} r_v={} prior={} start={},{} (exact)",
+        cfg.n,
+        cfg.rv,
+        cfg.prior_label(),
+        cfg.start[0],
+        cfg.start[1]
+    );
+    out!("searcher: {}", cfg.label());
+    out!("{:<28}{:>10.3}", "exact mean steps", exact.mean);
+    out!(
+        "{:<28}{:>10.3}   (mean steps / bound {})",
+        "lower bound (any searcher)",
+        lower_bound,
+        mean_over_bound.map_or("–".into(), |r| format!("{r:.4}"))
+    );
+    out!("{:<28}{:>10.3e}", "P(capped)", exact.capped_probability);
+    out!("{:<28}{}", "moves driven", exact.moves);
+    out!("{:<28}{:.3} s", "time", seconds);
     Ok(())
 }
 

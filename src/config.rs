@@ -14,7 +14,7 @@ use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::preset::Preset;
 use crate::prior::{self, PriorKind, PriorSpec};
-use crate::searchers::{self, PolicyKind, SearcherId};
+use crate::searchers::{self, Base, PolicyKind, SearcherId, SweepPattern};
 use std::borrow::Cow;
 use std::fmt;
 
@@ -79,6 +79,12 @@ pub struct Config {
     pub tree_nodes: u32,
     /// How many recent rollout traces to keep for drawing (0 = none).
     pub keep_traces: u32,
+    /// Planners: the receding horizon's depth h.
+    pub horizon: u32,
+    /// Rollout improvement: the base policy it completes searches with.
+    pub base: Base,
+    /// The sweep's pattern.
+    pub sweep_pattern: SweepPattern,
     /// The seed: trial i of a batch draws from streams derived from (seed, i).
     #[serde(with = "serde_seed")]
     pub seed: u64,
@@ -747,6 +753,39 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.keep_traces = u32_of(v),
     },
     Param {
+        key: "horizon",
+        kind: Kind::Int {
+            min: 1,
+            max: searchers::MAX_HORIZON as u64,
+        },
+        default: Value::Int(searchers::DEFAULT_HORIZON as u64),
+        help: "planners: the receding horizon's depth h (4·3^(h−1) move sequences, about 2·3^h simulated moves per decision, so at most 9)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.horizon as u64),
+        set: |c, v| c.horizon = u32_of(v),
+    },
+    Param {
+        key: "base",
+        kind: Kind::Choice(|| Base::NAMES.to_vec()),
+        default: Value::Name(Cow::Borrowed("cover")),
+        help: "rollout improvement's base policy: cover (greedy coverage, the cheapest), sweep (the lawnmower, covered stretches skipped), horizon (depth horizon; slow), or best (all three; slow)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Name(Cow::Borrowed(c.base.name())),
+        set: |c, v| c.base = Base::parse(name(v)).unwrap_or(c.base),
+    },
+    Param {
+        key: "sweep_pattern",
+        kind: Kind::Choice(|| SweepPattern::NAMES.to_vec()),
+        default: Value::Name(Cow::Borrowed("lawnmower")),
+        help: "the sweep's pattern: lawnmower (passes alternately right and left) or helix (always right)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Name(Cow::Borrowed(c.sweep_pattern.name())),
+        set: |c, v| c.sweep_pattern = SweepPattern::parse(name(v)).unwrap_or(c.sweep_pattern),
+    },
+    Param {
         key: "seed",
         kind: Kind::Int {
             min: 0,
@@ -795,6 +834,9 @@ impl Default for Config {
             decay: 1.0,
             tree_nodes: 0,
             keep_traces: 0,
+            horizon: 0,
+            base: Base::Cover,
+            sweep_pattern: SweepPattern::Lawnmower,
             seed: 0,
         };
         for p in PARAMS {

@@ -53,6 +53,36 @@ impl Coverage {
         gain
     }
 
+    /// As [`cover`](Coverage::cover), also returning how many of the newly
+    /// covered cells carry positive planning mass: a planner knows the search
+    /// is over when that count reaches the number left, which a running
+    /// difference of masses cannot tell exactly.
+    ///
+    /// # Panics
+    /// When `cell` is off the lattice this was built for.
+    #[inline]
+    pub fn cover_counted(
+        &mut self,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cell: u32,
+    ) -> (f64, u32) {
+        let searched = belief.searched();
+        let mass = belief.plan_mass();
+        let mut gain = 0.0;
+        let mut count = 0;
+        for c in sensor.around(cell) {
+            let i = c as usize;
+            if self.marked[i] == 0 && searched[i] == 0 {
+                self.marked[i] = 1;
+                self.stack.push(c);
+                gain += mass[i];
+                count += (mass[i] > 0.0) as u32;
+            }
+        }
+        (gain, count)
+    }
+
     /// The planning mass that moving to `cell` would newly cover, without
     /// moving there.
     #[inline]

@@ -128,6 +128,8 @@ pub struct Episode {
     optimal: u32,
     path: Vec<u32>,
     status: Status,
+    /// Detection switched off (see [`Episode::blind`]).
+    blind: bool,
 }
 
 impl Episode {
@@ -177,6 +179,7 @@ impl Episode {
             optimal: sensor.optimal_steps(&torus, start, target),
             path: vec![start],
             status: Status::Running,
+            blind: false,
             sensor,
             torus,
         };
@@ -184,6 +187,21 @@ impl Episode {
         if ep.sensor.detects(&ep.torus, start, target) {
             ep.status = Status::Found;
         }
+        Ok(ep)
+    }
+
+    /// Trial 0 of `cfg` with detection switched off: the searcher moves
+    /// until the step cap as if the target were nowhere it looked. Until
+    /// detection a searcher learns nothing of the target, so this is the
+    /// path every trial follows up to its detection (for a deterministic
+    /// searcher: `crate::exact`).
+    ///
+    /// # Errors
+    /// A [`ConfigError`] naming the first invalid field.
+    pub fn blind(cfg: &Config) -> Result<Episode, ConfigError> {
+        let mut ep = Episode::trial(cfg, 0)?;
+        ep.blind = true;
+        ep.status = Status::Running;
         Ok(ep)
     }
 
@@ -265,7 +283,7 @@ impl Episode {
         self.path.push(pos);
         self.belief.search_around(&self.sensor, pos);
         self.searcher.observe(&self.torus, m, pos);
-        if self.sensor.detects(&self.torus, pos, self.target) {
+        if !self.blind && self.sensor.detects(&self.torus, pos, self.target) {
             self.status = Status::Found;
         } else if self.steps() >= self.cfg.step_cap {
             self.status = Status::Capped;

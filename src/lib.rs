@@ -15,6 +15,7 @@ pub mod budget;
 pub mod config;
 pub mod coverage;
 pub mod episode;
+pub mod exact;
 pub mod experiment;
 pub mod lattice;
 pub mod mcts;

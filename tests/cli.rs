@@ -51,8 +51,36 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--target must be x,y with each in 1..=40",
         ),
         (
+            &["run", "--searcher", "horizon", "--horizon", "0"],
+            "--horizon must be an integer in 1..=9, got 0",
+        ),
+        (
+            &["run", "--searcher", "horizon", "--horizon", "12"],
+            "--horizon must be an integer in 1..=9, got 12",
+        ),
+        (
+            &["run", "--searcher", "improve", "--base", "astar"],
+            "--base must be one of cover, sweep, horizon, best, got astar",
+        ),
+        (
+            &["run", "--searcher", "sweep", "--sweep-pattern", "spiral"],
+            "--sweep-pattern must be one of lawnmower, helix, got spiral",
+        ),
+        (
+            &["run", "--searcher", "rw", "--exact"],
+            "--exact needs a deterministic searcher (sweep, horizon, improve), got rw",
+        ),
+        (
+            &["run", "--exact"],
+            "--exact needs a deterministic searcher (sweep, horizon, improve), got mcts",
+        ),
+        (
+            &["run", "--searcher", "sweep", "--known", "--exact"],
+            "--exact cannot evaluate --known",
+        ),
+        (
             &["run", "--searcher", "bogus"],
-            "--searcher must be one of mcts, rw, levy, nsarw, got bogus",
+            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, got bogus",
         ),
         (
             &["run", "--loops", "5", "--decision-ms", "2"],

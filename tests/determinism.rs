@@ -114,19 +114,45 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            "sweep",
+            Config {
+                searcher: searcher("sweep"),
+                ..small()
+            },
+        ),
+        (
+            "horizon",
+            Config {
+                searcher: searcher("horizon"),
+                horizon: 4,
+                ..small()
+            },
+        ),
+        (
+            "improve best",
+            Config {
+                searcher: searcher("improve"),
+                base: torus_search::searchers::Base::Best,
+                horizon: 3,
+                prior: PriorKind::Uniform,
+                ..small()
+            },
+        ),
     ]
 }
 
 /// The pinned fingerprints, in `cases()` order (seed 2026, 4 trials each).
-/// The `code` case was added with that variant (issue 10); the others are
-/// unchanged.
+/// The `code` case was added with that variant (issue 10), the sweep,
+/// horizon and improve cases with those planners (issue 11); the others
+/// are unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
 /// into the config changed no draw. The four Lévy and NSARW cases were
 /// re-pinned in issue 11 when those walks became table-driven: the same laws
 /// from different random draws. The `cells decay` case was added with the
 /// table's decay (issue 11); the others set decay 1, the paper's table, and
 /// keep their values.
-const PINNED: [u64; 11] = [
+const PINNED: [u64; 14] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -138,6 +164,9 @@ const PINNED: [u64; 11] = [
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
     0x38afd6dc74bcfd8f,
+    0xa43971504d971172,
+    0xec1f7e9f227ae3a8,
+    0x2f8ace8c33995f53,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

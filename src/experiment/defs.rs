@@ -477,7 +477,10 @@ mod tests {
                 "MCTS, Lévy rollouts",
                 "Random walk",
                 "Lévy flight",
-                "NSARW"
+                "NSARW",
+                "Sweep",
+                "Receding horizon",
+                "Rollout improvement"
             ]
         );
         // The unit tests' shuttle searcher is registered here but left out.

@@ -425,12 +425,12 @@ mod tests {
         assert_eq!(p.points[1].config.loops, 200);
         assert_eq!(c.final_rule.name(), "uct", "the preset applies");
         let p = plan(r#"{"name":"sigma-sweep","seed":"9"}"#).unwrap();
-        assert_eq!(p.points.len(), 5 * 11);
+        assert_eq!(p.points.len(), 8 * 11);
         assert_eq!(p.header.series[0], "MCTS, RW rollouts");
         let last = &p.points[p.points.len() - 1].config;
         assert_eq!(
             (last.searcher.name(), last.sigma, last.seed),
-            ("nsarw", 10.0, 9)
+            ("improve", 10.0, 9)
         );
         assert_eq!(p.points[11].config.rollout.name(), "levy");
     }
@@ -473,6 +473,9 @@ mod tests {
                 "target" => (r#""searcher":"mcts""#, "2,2".into()),
                 "loops" => (r#""ms":"0""#, "7".into()),
                 "searcher" => (r#""rv":"1""#, "nsarw".into()),
+                "horizon" => (r#""searcher":"horizon""#, "3".into()),
+                "base" => (r#""searcher":"improve""#, "sweep".into()),
+                "sweep_pattern" => (r#""searcher":"sweep""#, "helix".into()),
                 _ => (r#""searcher":"mcts""#, p.default.text()),
             };
             let n = if p.key == "n" { "" } else { r#""n":"6","# };

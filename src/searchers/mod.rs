@@ -10,16 +10,23 @@
 //! MCTS rollout policies ([`Policy`]).
 
 mod greedy;
+mod horizon;
+mod improve;
 mod levy;
 mod nsarw;
+pub mod plan;
 mod policy;
 mod random_walk;
+mod sweep;
 
 pub use greedy::Greedy;
+pub use horizon::{Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
+pub use improve::{base_mean, Base, Improve};
 pub use levy::{flight_end, Directions, FlightLengths, Levy};
 pub use nsarw::Nsarw;
 pub use policy::{NoVisit, Outcome, Policy, PolicyKind, Visit};
 pub use random_walk::RandomWalk;
+pub use sweep::{sweep_path, Sweep, SweepPattern};
 
 use crate::belief::BeliefState;
 use crate::budget::Budget;
@@ -109,6 +116,14 @@ pub struct Setup<'a> {
     pub start: u32,
 }
 
+impl Setup<'_> {
+    /// The detection sensor of the configuration (validated before a
+    /// searcher is built).
+    pub fn sensor(&self) -> Sensor {
+        Sensor::new(self.torus, self.cfg.rv).expect("rv was validated")
+    }
+}
+
 /// A registry entry: a searcher's name, what it reads and how to build it.
 pub struct SearcherInfo {
     /// The `searcher` value that selects it.
@@ -131,9 +146,25 @@ pub static REGISTRY: &[&SearcherInfo] = &[
     &random_walk::INFO,
     &levy::INFO,
     &nsarw::INFO,
+    &sweep::INFO,
+    &horizon::INFO,
+    &improve::INFO,
     #[cfg(test)]
     &tests::STAND_STILL,
 ];
+
+/// The searchers whose path does not depend on chance: until it detects
+/// the target such a searcher's path is a function of the configuration
+/// alone, so one pass along it gives its exact mean (`crate::exact`).
+/// Random walks and MCTS draw random numbers, so they are not listed.
+/// (A list beside the registry rather than a field of [`SearcherInfo`], so
+/// that entries that predate it need no edit.)
+const DETERMINISTIC: &[&SearcherInfo] = &[&sweep::INFO, &horizon::INFO, &improve::INFO];
+
+/// True when the searcher of `cfg` is deterministic (see [`DETERMINISTIC`]).
+pub fn deterministic(cfg: &Config) -> bool {
+    DETERMINISTIC.iter().any(|s| s.name == cfg.searcher.name())
+}
 
 /// The names of the registered searchers.
 pub fn names() -> Vec<&'static str> {

@@ -1,0 +1,145 @@
+//! Exact evaluation of a deterministic searcher: one pass along its path
+//! gives its mean with no sampling noise.
+//!
+//! A searcher learns nothing about the target until it detects it, so a
+//! deterministic searcher follows one fixed path `p_0, p_1, …` in every
+//! trial up to detection, whatever the target. With `R_t` the prior mass
+//! outside the cells covered by `p_0 … p_t`, a trial's `min(T, cap)` has
+//! mean `Σ_{t<cap} R_t` ([`crate::bound::path_mean`]): exactly what a batch
+//! of infinitely many trials would report (a capped trial counted at its
+//! cap). The path is driven by a blind [`Episode`] until every cell with
+//! prior mass is covered or the step cap.
+
+use crate::bound;
+use crate::config::{Config, ConfigError};
+use crate::episode::Episode;
+use crate::searchers;
+use std::fmt;
+
+/// Why a configuration cannot be evaluated exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExactError {
+    /// The searcher draws random numbers: its path is not fixed.
+    NotDeterministic {
+        /// The searcher's name.
+        searcher: &'static str,
+    },
+    /// With `known` the searcher plans with the target's cell, so its path
+    /// depends on the target.
+    Known,
+    /// The configuration is invalid.
+    Config(ConfigError),
+}
+
+impl fmt::Display for ExactError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ExactError::NotDeterministic { searcher } => write!(
+                f,
+                "--exact needs a deterministic searcher ({}), got {searcher}",
+                deterministic_names().join(", ")
+            ),
+            ExactError::Known => write!(
+                f,
+                "--exact cannot evaluate --known: the path then depends on the target"
+            ),
+            ExactError::Config(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for ExactError {}
+
+impl From<ConfigError> for ExactError {
+    fn from(e: ConfigError) -> ExactError {
+        ExactError::Config(e)
+    }
+}
+
+/// The registered searchers that can be evaluated exactly.
+pub fn deterministic_names() -> Vec<&'static str> {
+    let mut cfg = Config::default();
+    searchers::REGISTRY
+        .iter()
+        .filter(|s| {
+            cfg.searcher = searchers::SearcherId::parse(s.name).expect("registered");
+            searchers::deterministic(&cfg)
+        })
+        .map(|s| s.name)
+        .collect()
+}
+
+/// The exact mean of a deterministic searcher.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Exact {
+    /// `E[min(T, step_cap)] = Σ_{t<cap} R_t`: the mean steps a batch of
+    /// trials estimates.
+    pub mean: f64,
+    /// Prior mass the path leaves uncovered before the cap: the probability
+    /// that a trial is capped.
+    pub capped_probability: f64,
+    /// Moves driven: until every cell with prior mass was covered, or the
+    /// step cap.
+    pub moves: u32,
+}
+
+/// Drives the searcher of `cfg` along its whole path with detection off
+/// and sums `R_t` exactly.
+///
+/// # Errors
+/// [`ExactError::NotDeterministic`] for a searcher that draws random
+/// numbers, [`ExactError::Known`] with `known`, [`ExactError::Config`] for
+/// an invalid configuration.
+pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
+    let game = cfg.game()?;
+    if !searchers::deterministic(cfg) {
+        return Err(ExactError::NotDeterministic {
+            searcher: cfg.searcher.name(),
+        });
+    }
+    if cfg.known {
+        return Err(ExactError::Known);
+    }
+    let mass = game.prior.mass();
+    let mut covered = vec![false; game.torus.cells()];
+    let mut left = mass.iter().filter(|&&m| m > 0.0).count();
+    let mut cover = |cell: u32, left: &mut usize| {
+        for c in game.sensor.around(cell) {
+            if !covered[c as usize] {
+                covered[c as usize] = true;
+                *left -= (mass[c as usize] > 0.0) as usize;
+            }
+        }
+    };
+    let mut ep = Episode::blind(cfg)?;
+    cover(ep.position(), &mut left);
+    // Σ_{t<cap} R_t reads positions 0..cap−1: at most cap − 1 moves.
+    while left > 0 && ep.steps() + 1 < cfg.step_cap {
+        ep.step_move();
+        cover(ep.position(), &mut left);
+    }
+    let pm = bound::path_mean(&game.torus, &game.sensor, mass, ep.path());
+    Ok(Exact {
+        mean: pm.mean,
+        capped_probability: pm.uncovered,
+        moves: ep.steps(),
+    })
+}
+
+/// What `run --exact` reports.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ExactReport<'a> {
+    /// The exact evaluation.
+    pub exact: Exact,
+    /// The lower bound on the mean steps of any searcher
+    /// ([`bound::lower_bound_capped`]).
+    pub lower_bound: f64,
+    /// The exact mean ÷ the lower bound (`None` when the bound is 0).
+    pub mean_over_bound: Option<f64>,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// The seed (also in `config`; the result does not depend on it).
+    pub seed: u64,
+    /// The full resolved configuration.
+    pub config: &'a Config,
+}

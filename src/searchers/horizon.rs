@@ -1,0 +1,295 @@
+//! The receding-horizon planner: every move sequence of depth `h`
+//! (reversals pruned), scored by how early it covers planning mass; the
+//! first move of the best sequence is taken, then the search repeats.
+//!
+//! # Rule
+//! A sequence covering new planning mass `g_1, …, g_h` at its moves scores
+//! `Σ_k (h − k + 1)·g_k`. Minimising the expected time `E[T] = Σ_t R_t`
+//! (`R_t`: mass left after `t` moves) over the horizon is the same as
+//! maximising this score, since `Σ_{k≤h} R_k = h·R_0 − score`: mass found
+//! earlier counts more. Ties go to going straight on, then `Move::ALL`
+//! order. There are `4·3^(h−1)` sequences, about `2·3^h` simulated moves
+//! per decision (hence [`MAX_HORIZON`]).
+//!
+//! **Fallback.** Beyond the horizon the planner is blind, so it compares
+//! the best sequence's rate `G/h` (`G`: the mass it covers) with the best
+//! far goal: the cell maximising (uncovered mass in its disc) ÷
+//! (distance + 1), an O(N²·disc) scan. When the goal's value is larger (in particular
+//! when nothing within reach adds mass) it steps straight toward the goal.
+//!
+//! The planner is deterministic: its path depends only on the belief, so
+//! `run --exact` evaluates it exactly.
+
+use super::plan::{fallback_target, reverse, toward};
+use super::{MoveScores, Searcher, SearcherInfo, World};
+use crate::belief::BeliefState;
+use crate::config::Config;
+use crate::coverage::Coverage;
+use crate::lattice::{Move, Sensor, Torus};
+use crate::mcts::DecisionView;
+use crate::view::Layer;
+
+/// The largest horizon: `2·3^h` simulated moves per decision stays under
+/// 10⁵ (about 1 ms natively at r_v = 1).
+pub const MAX_HORIZON: u32 = 9;
+
+/// The default horizon.
+pub const DEFAULT_HORIZON: u32 = 6;
+
+/// What the decision panel says the scores are.
+const MEANING: &str =
+    "mass covered over the horizon, earlier moves weighted more: Σ_k (h−k+1)·gain_k";
+
+/// The receding-horizon planner as a searcher.
+pub static INFO: SearcherInfo = SearcherInfo {
+    name: "horizon",
+    label: "Receding horizon",
+    help: "tries every move sequence of depth h and takes the first move of the one that covers planning mass earliest; heads for the best far cell when that is better",
+    deliberates: false,
+    uses: |_, key| key == "horizon",
+    build: |s| Box::new(Horizon::new(s.cfg, s.torus)),
+};
+
+/// The depth-`h` search over move sequences, with its scratch.
+#[derive(Clone, Debug)]
+pub struct Lookahead {
+    h: u32,
+    cur: Vec<u32>,
+    run_seq: Vec<u32>,
+    best_seq: Vec<u32>,
+    best: f64,
+    best_gain: f64,
+}
+
+/// What a [`Lookahead`] found.
+#[derive(Clone, Copy, Debug)]
+pub struct Found {
+    /// The best sequence's first move.
+    pub first: Move,
+    /// Score of the best sequence starting with each move.
+    pub score: [f64; 4],
+    /// Mass the best sequence covers (unweighted).
+    pub gain: f64,
+}
+
+/// `last` first (going straight wins ties), then the others in `Move::ALL`
+/// order, never `skip`.
+#[inline]
+fn order(last: Option<Move>, skip: Option<Move>) -> impl Iterator<Item = Move> {
+    last.into_iter()
+        .chain(Move::ALL.into_iter().filter(move |&m| Some(m) != last))
+        .filter(move |&m| Some(m) != skip)
+}
+
+impl Lookahead {
+    /// A lookahead of depth `h` (at least 1).
+    pub fn new(h: u32) -> Lookahead {
+        let h = h.max(1);
+        Lookahead {
+            h,
+            cur: vec![0; h as usize],
+            run_seq: vec![0; h as usize],
+            best_seq: vec![0; h as usize],
+            best: 0.0,
+            best_gain: 0.0,
+        }
+    }
+
+    /// The depth.
+    pub fn depth(&self) -> u32 {
+        self.h
+    }
+
+    /// The best sequence's cells (after [`search`](Lookahead::search)).
+    pub fn best_seq(&self) -> &[u32] {
+        &self.best_seq
+    }
+
+    /// Tries every sequence from `pos` over `cov` (left as it was); `last`
+    /// is the move that led to `pos`, preferred on ties.
+    pub fn search(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cov: &mut Coverage,
+        pos: u32,
+        last: Option<Move>,
+    ) -> Found {
+        let mut score = [f64::NAN; 4];
+        let mut overall = f64::NEG_INFINITY;
+        let mut first = last.unwrap_or(Move::Up);
+        let mut gain = 0.0;
+        for m in order(last, None) {
+            self.best = f64::NEG_INFINITY;
+            let q = torus.step(pos, m);
+            let cp = cov.checkpoint();
+            let g = cov.cover(sensor, belief, q);
+            self.cur[0] = q;
+            let w = self.h as f64;
+            self.dfs(torus, sensor, belief, cov, q, m, 1, w * g, g);
+            cov.undo(cp);
+            score[m as usize] = self.best;
+            if self.best > overall {
+                overall = self.best;
+                first = m;
+                gain = self.best_gain;
+                self.best_seq.copy_from_slice(&self.run_seq);
+            }
+        }
+        Found { first, score, gain }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn dfs(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cov: &mut Coverage,
+        pos: u32,
+        last: Move,
+        k: u32,
+        acc: f64,
+        gain: f64,
+    ) {
+        if k == self.h {
+            if acc > self.best {
+                self.best = acc;
+                self.best_gain = gain;
+                self.run_seq.copy_from_slice(&self.cur);
+            }
+            return;
+        }
+        let w = (self.h - k) as f64;
+        for m in order(Some(last), Some(reverse(last))) {
+            let q = torus.step(pos, m);
+            let cp = cov.checkpoint();
+            let g = cov.cover(sensor, belief, q);
+            self.cur[k as usize] = q;
+            self.dfs(
+                torus,
+                sensor,
+                belief,
+                cov,
+                q,
+                m,
+                k + 1,
+                acc + w * g,
+                gain + g,
+            );
+            cov.undo(cp);
+        }
+    }
+}
+
+/// One decision of the horizon rule from `pos` over `cov` (left as it
+/// was): the lookahead's move, or a step toward the fallback goal when
+/// that is better (`full_fallback`), or when nothing within the horizon
+/// adds mass (always). Returns the move, the lookahead's result and the
+/// goal it headed for, if any.
+#[allow(clippy::too_many_arguments)]
+pub fn decide(
+    look: &mut Lookahead,
+    torus: &Torus,
+    sensor: &Sensor,
+    belief: &BeliefState,
+    cov: &mut Coverage,
+    pos: u32,
+    last: Option<Move>,
+    full_fallback: bool,
+) -> (Move, Found, Option<u32>) {
+    let found = look.search(torus, sensor, belief, cov, pos, last);
+    if found.gain > 0.0 && !full_fallback {
+        return (found.first, found, None);
+    }
+    let rate = found.gain / look.depth() as f64;
+    match fallback_target(torus, sensor, belief, cov, pos) {
+        Some((goal, v)) if found.gain <= 0.0 || v > rate => {
+            (toward(torus, pos, goal, found.first), found, Some(goal))
+        }
+        _ => (found.first, found, None),
+    }
+}
+
+/// The receding-horizon searcher.
+pub struct Horizon {
+    look: Lookahead,
+    cov: Coverage,
+    last: Option<Move>,
+    intent: Vec<u32>,
+    scores: Option<MoveScores>,
+}
+
+impl Horizon {
+    /// A planner with `cfg.horizon` for a lattice like `torus`.
+    pub fn new(cfg: &Config, torus: &Torus) -> Horizon {
+        Horizon {
+            look: Lookahead::new(cfg.horizon),
+            cov: Coverage::new(torus.cells()),
+            last: None,
+            intent: Vec::with_capacity(2 * torus.n() as usize + cfg.horizon as usize),
+            scores: None,
+        }
+    }
+}
+
+/// Writes into `out` the cells a straight walk from `pos` to `goal` enters.
+pub(crate) fn walk_to(torus: &Torus, pos: u32, goal: u32, out: &mut Vec<u32>) {
+    let mut p = pos;
+    while p != goal {
+        p = torus.step(p, toward(torus, p, goal, Move::Up));
+        out.push(p);
+    }
+}
+
+impl Searcher for Horizon {
+    fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
+        self.cov.clear();
+        let (m, found, goal) = decide(
+            &mut self.look,
+            w.torus,
+            w.sensor,
+            w.belief,
+            &mut self.cov,
+            w.pos,
+            self.last,
+            true,
+        );
+        self.intent.clear();
+        match goal {
+            Some(g) => walk_to(w.torus, w.pos, g, &mut self.intent),
+            None => self.intent.extend_from_slice(self.look.best_seq()),
+        }
+        self.scores = Some(MoveScores {
+            meaning: MEANING,
+            higher_is_better: true,
+            score: found.score,
+            chosen: m as u8,
+        });
+        Some(m)
+    }
+
+    fn observe(&mut self, _torus: &Torus, m: Move, _pos: u32) {
+        self.last = Some(m);
+        if !self.intent.is_empty() {
+            self.intent.remove(0);
+        }
+    }
+
+    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+        None
+    }
+
+    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
+        None
+    }
+
+    fn intent(&self) -> &[u32] {
+        &self.intent
+    }
+
+    fn scores(&self) -> Option<MoveScores> {
+        self.scores
+    }
+}

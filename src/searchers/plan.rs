@@ -1,0 +1,178 @@
+//! What the belief planners (sweep, horizon, rollout improvement) share:
+//! simulated moves over a [`Coverage`], the fallback target, and the cheap
+//! greedy coverage walk that completes searches in rollouts.
+//!
+//! Every quantity here is a planning quantity: mass is the belief's
+//! planning mass, "covered" means searched for real or by the simulation.
+//! For a path `p_0, p_1, …` from the current cell the expected number of
+//! further moves until detection, given no detection so far, is
+//! proportional to `Σ_{t≥1} R_t` (`R_t`: planning mass left after `t`
+//! simulated moves): see `crate::bound`. Planners compare paths by that sum.
+
+use crate::belief::BeliefState;
+use crate::coverage::Coverage;
+use crate::lattice::{Move, Sensor, Torus};
+
+/// The cells with positive planning mass that are not searched yet.
+pub fn mass_cells_left(belief: &BeliefState) -> u32 {
+    belief
+        .plan_mass()
+        .iter()
+        .zip(belief.searched())
+        .filter(|&(&m, &s)| m > 0.0 && s == 0)
+        .count() as u32
+}
+
+/// The planning mass in the disc around `cell` that is not covered yet.
+#[inline]
+pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u32) -> f64 {
+    cov.gain(sensor, belief, cell)
+}
+
+/// The fallback target: the cell maximising (uncovered planning mass in its
+/// disc) ÷ (torus ℓ1 distance from `pos` + 1), with that value; `None` when
+/// no mass is left. Ties go to the lower cell index. O(N² · disc).
+pub fn fallback_target(
+    torus: &Torus,
+    sensor: &Sensor,
+    belief: &BeliefState,
+    cov: &Coverage,
+    pos: u32,
+) -> Option<(u32, f64)> {
+    let mut best: Option<(u32, f64)> = None;
+    for c in 0..torus.cells() as u32 {
+        let g = cov.gain(sensor, belief, c);
+        if g <= 0.0 {
+            continue;
+        }
+        let v = g / (torus.l1(pos, c) as f64 + 1.0);
+        if best.is_none_or(|(_, b)| v > b) {
+            best = Some((c, v));
+        }
+    }
+    best
+}
+
+/// A move from `pos` that shortens the torus ℓ1 distance to `target`: along
+/// the axis with the longer way to go (x on a tie); `fallback` when already
+/// there.
+#[inline]
+pub fn toward(torus: &Torus, pos: u32, target: u32, fallback: Move) -> Move {
+    let (dx, dy) = torus.delta(pos, target);
+    if dx == 0 && dy == 0 {
+        fallback
+    } else if dx.abs() >= dy.abs() {
+        if dx > 0 {
+            Move::Right
+        } else {
+            Move::Left
+        }
+    } else if dy > 0 {
+        Move::Down
+    } else {
+        Move::Up
+    }
+}
+
+/// The move that undoes `m`.
+#[inline]
+pub fn reverse(m: Move) -> Move {
+    Move::from_index(m as u32 + 2)
+}
+
+/// The greedy coverage walk: the neighbour whose disc newly covers the most
+/// planning mass (ties: keep going straight, then `Move::ALL` order); when no
+/// neighbour adds mass, straight toward the cell with the most uncovered mass
+/// per step of distance, kept as the goal until it no longer adds mass.
+///
+/// It is the rollout improver's cheap base: O(disc) per move, plus an
+/// O(N²) scan each time it has to pick a new goal.
+#[derive(Clone, Debug, Default)]
+pub struct CoverWalk {
+    last: Option<Move>,
+    goal: Option<u32>,
+}
+
+impl CoverWalk {
+    /// A walk that last moved `last` (its preferred direction), with no goal.
+    pub fn new(last: Option<Move>) -> CoverWalk {
+        CoverWalk { last, goal: None }
+    }
+
+    /// The next move from `pos` over the simulated coverage `cov`.
+    pub fn next_move(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cov: &Coverage,
+        pos: u32,
+    ) -> Move {
+        let mut best = (0.0, self.last.unwrap_or(Move::Up));
+        for m in self.last.into_iter().chain(Move::ALL) {
+            let g = cov.gain(sensor, belief, torus.step(pos, m));
+            if g > best.0 {
+                best = (g, m);
+            }
+        }
+        let m = if best.0 > 0.0 {
+            best.1
+        } else {
+            let stale = self.goal.is_none_or(|g| cov.gain(sensor, belief, g) <= 0.0);
+            if stale {
+                self.goal = cell_goal(torus, belief, cov, pos);
+            }
+            match self.goal {
+                Some(g) => toward(torus, pos, g, best.1),
+                None => best.1,
+            }
+        };
+        self.last = Some(m);
+        m
+    }
+}
+
+/// The uncovered cell with positive mass maximising mass ÷ (distance + 1)
+/// (cheaper than [`fallback_target`]: one cell, not a disc, per candidate).
+fn cell_goal(torus: &Torus, belief: &BeliefState, cov: &Coverage, pos: u32) -> Option<u32> {
+    let mass = belief.plan_mass();
+    let mut best: Option<(u32, f64)> = None;
+    for (c, &m) in mass.iter().enumerate() {
+        if m <= 0.0 || cov.covered(belief, c as u32) {
+            continue;
+        }
+        let v = m / (torus.l1(pos, c as u32) as f64 + 1.0);
+        if best.is_none_or(|(_, b)| v > b) {
+            best = Some((c as u32, v));
+        }
+    }
+    best.map(|(c, _)| c)
+}
+
+/// Neumaier-compensated running sum (a completed search adds thousands of
+/// small terms).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Sum {
+    s: f64,
+    c: f64,
+}
+
+impl Sum {
+    /// Adds `x`.
+    #[inline]
+    pub fn add(&mut self, x: f64) {
+        let t = self.s + x;
+        self.c += if self.s.abs() >= x.abs() {
+            (self.s - t) + x
+        } else {
+            (x - t) + self.s
+        };
+        self.s = t;
+    }
+
+    /// The sum.
+    #[inline]
+    pub fn value(&self) -> f64 {
+        self.s + self.c
+    }
+}

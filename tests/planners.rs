@@ -1,0 +1,228 @@
+//! The belief planners (sweep, receding horizon, rollout improvement) and
+//! their exact evaluation: the exact mean agrees with sampled trials,
+//! rollout improvement never loses to its base, and on tiny lattices the
+//! bound ≤ the dynamic-programming optimum ≤ every planner.
+#![cfg(not(target_arch = "wasm32"))]
+
+mod common;
+
+use common::searcher;
+use torus_search::batch::run_trials;
+use torus_search::bound::{dp_optimum, lower_bound};
+use torus_search::config::Config;
+use torus_search::exact::{exact_mean, ExactError};
+use torus_search::prior::PriorKind;
+use torus_search::searchers::{base_mean, Base};
+
+fn planner(name: &str, n: u32, prior: PriorKind, sigma: f64) -> Config {
+    Config {
+        searcher: searcher(name),
+        n,
+        prior,
+        sigma,
+        horizon: 4,
+        ..Config::default()
+    }
+}
+
+fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
+    let mut v = vec![
+        ("sweep".to_string(), planner("sweep", n, prior, sigma)),
+        ("horizon".to_string(), planner("horizon", n, prior, sigma)),
+    ];
+    for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
+        v.push((
+            format!("improve {base}"),
+            Config {
+                base,
+                ..planner("improve", n, prior, sigma)
+            },
+        ));
+    }
+    v
+}
+
+/// Σ R_t from one pass equals the sampled mean within 4 standard errors.
+/// Checked once: dropping `R_0` (the term before the first move) from the
+/// exact sum moves it by 0.95 and fails this test (sweep: 20.01 vs 21.49 ± 0.26).
+#[test]
+fn exact_mean_matches_sampled_trials() {
+    for (prior, sigma, cap) in [
+        (PriorKind::Gaussian, 2.5, 100_000),
+        (PriorKind::Uniform, 0.0, 15),
+    ] {
+        // The improvers' other bases are exercised by the next test (and
+        // cost more per trial in a debug build).
+        let all = planners(10, prior, sigma);
+        for (name, cfg) in all
+            .into_iter()
+            .filter(|(n, _)| !n.starts_with("improve") || n == "improve cover")
+        {
+            let cfg = Config {
+                step_cap: cap,
+                seed: 11,
+                ..cfg
+            };
+            let exact = exact_mean(&cfg).unwrap();
+            let trials = 1500;
+            let r = run_trials(&cfg, 0, trials).unwrap();
+            let xs: Vec<f64> = r.iter().map(|t| t.steps as f64).collect();
+            let mean = xs.iter().sum::<f64>() / trials as f64;
+            let var = xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (trials - 1) as f64;
+            let se = (var / trials as f64).sqrt();
+            assert!(
+                (exact.mean - mean).abs() <= 4.0 * se,
+                "{name} {prior} cap {cap}: exact {} vs sampled {mean} ± {se}",
+                exact.mean
+            );
+            let capped = r.iter().filter(|t| !t.found).count() as f64 / trials as f64;
+            let p = exact.capped_probability;
+            let se_p = (p * (1.0 - p) / trials as f64).sqrt().max(1e-3);
+            assert!(
+                (capped - p).abs() <= 4.0 * se_p,
+                "{name}: capped {capped} vs {p}"
+            );
+        }
+    }
+}
+
+/// Rollout improvement is never worse than its base, exactly.
+#[test]
+fn rollout_improvement_is_never_worse_than_its_base() {
+    for (n, prior, sigma) in [
+        (12, PriorKind::Gaussian, 2.5),
+        (16, PriorKind::Gaussian, 4.0),
+        (16, PriorKind::Uniform, 0.0),
+        (10, PriorKind::Gaussian, 1.0),
+    ] {
+        for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
+            let cfg = Config {
+                base,
+                ..planner("improve", n, prior, sigma)
+            };
+            let improved = exact_mean(&cfg).unwrap().mean;
+            let alone = base_mean(&cfg, base).unwrap();
+            println!("n={n} {prior} σ={sigma} base {base}: {alone:.4} → {improved:.4}");
+            assert!(
+                improved <= alone + 1e-9 * alone,
+                "n={n} {prior} base {base}: improved {improved} > base {alone}"
+            );
+        }
+    }
+}
+
+/// On N = 3 and 4: lower bound ≤ DP optimum ≤ each planner's exact mean.
+#[test]
+fn tiny_lattices_respect_bound_and_optimum() {
+    for n in [3, 4] {
+        for (prior, sigma) in [
+            (PriorKind::Uniform, 0.0),
+            (PriorKind::Gaussian, 1.0),
+            (PriorKind::Gaussian, 0.6),
+            (PriorKind::Delta, 0.0),
+        ] {
+            for start in [[1, 1], [2, 1]] {
+                let base = Config {
+                    start,
+                    ..planner("sweep", n, prior, sigma)
+                };
+                let g = base.game().unwrap();
+                let opt = dp_optimum(&g.torus, &g.sensor, g.prior.mass(), g.start).unwrap();
+                let lb = lower_bound(&base).unwrap();
+                assert!(
+                    lb <= opt + 1e-12,
+                    "n={n} {prior}: bound {lb} > optimum {opt}"
+                );
+                for (name, cfg) in planners(n, prior, sigma) {
+                    let cfg = Config { start, ..cfg };
+                    let e = exact_mean(&cfg).unwrap().mean;
+                    println!(
+                        "n={n} {prior} σ={sigma} start {start:?}: bound {lb:.4} optimum {opt:.4} {name} {e:.4} ({:+.2}%)",
+                        100.0 * (e / opt - 1.0)
+                    );
+                    assert!(
+                        opt <= e + 1e-12,
+                        "n={n} {name}: optimum {opt} > planner {e}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A delta prior: every belief planner walks straight there, 39 moves at
+/// N = 40 in every trial (the sweep, which ignores the prior, does not).
+#[test]
+fn delta_prior_is_found_in_39_moves_every_trial() {
+    for (name, cfg) in planners(40, PriorKind::Gaussian, 0.0) {
+        if name == "sweep" {
+            continue;
+        }
+        let cfg = Config { horizon: 6, ..cfg };
+        assert_eq!(exact_mean(&cfg).unwrap().mean, 39.0, "{name}");
+        for t in run_trials(&cfg, 0, 5).unwrap() {
+            assert_eq!(t.steps, 39, "{name}");
+        }
+    }
+}
+
+/// The uniform goal (≤ 270 at N = 40; the bound is 265.50) for the
+/// receding horizon, exactly.
+#[test]
+fn horizon_meets_the_uniform_goal_exactly() {
+    let cfg = Config {
+        horizon: 6,
+        ..planner("horizon", 40, PriorKind::Uniform, 0.0)
+    };
+    let e = exact_mean(&cfg).unwrap().mean;
+    assert!(e <= 270.0, "horizon uniform {e}");
+}
+
+#[test]
+fn random_searchers_are_refused_exact_evaluation() {
+    for name in ["mcts", "rw", "levy", "nsarw"] {
+        let cfg = Config {
+            searcher: searcher(name),
+            ..Config::default()
+        };
+        assert_eq!(
+            exact_mean(&cfg).unwrap_err(),
+            ExactError::NotDeterministic {
+                searcher: searcher(name).name()
+            }
+        );
+    }
+    let known = Config {
+        known: true,
+        ..planner("sweep", 10, PriorKind::Uniform, 0.0)
+    };
+    assert_eq!(exact_mean(&known).unwrap_err(), ExactError::Known);
+}
+
+/// Cost per move of each planner at N = 40 and N = 256 (σ = 10, the first
+/// `moves` moves of trial 0). Speed is measured, never asserted: run with
+/// `cargo test --release --test planners -- --ignored --nocapture cost`.
+#[test]
+#[ignore]
+fn cost_per_move() {
+    use torus_search::episode::Episode;
+    for n in [40, 256] {
+        for (name, cfg) in planners(n, PriorKind::Gaussian, n as f64 / 4.0) {
+            let cfg = Config {
+                horizon: if name == "horizon" { 6 } else { 3 },
+                ..cfg
+            };
+            let moves = if name.starts_with("improve") { 10 } else { 200 };
+            let mut ep = Episode::blind(&cfg).unwrap();
+            let t = std::time::Instant::now();
+            for _ in 0..moves {
+                ep.step_move();
+            }
+            let ms = t.elapsed().as_secs_f64() * 1e3 / moves as f64;
+            println!(
+                "N={n} {name} (horizon {}): {ms:.3} ms per move",
+                cfg.horizon
+            );
+        }
+    }
+}
