@@ -75,6 +75,9 @@ pub struct Config {
     /// `cells`: the factor the table's counts are multiplied by whenever the
     /// belief changes (1 keeps them for ever, as the paper does).
     pub decay: f64,
+    /// MCTS: after this many real moves in a row that
+    /// search no new cell, head for the best unsearched cell (0 = never).
+    pub escape: u32,
     /// `tree`: arena cap in nodes.
     pub tree_nodes: u32,
     /// How many recent rollout traces to keep for drawing (0 = none).
@@ -730,6 +733,19 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.decay = float(v),
     },
     Param {
+        key: "escape",
+        kind: Kind::Int {
+            min: 0,
+            max: 1_000_000,
+        },
+        default: Value::Int(crate::mcts::DEFAULT_ESCAPE as u64),
+        help: "MCTS: after this many real moves in a row that search no new cell, walk straight to the cell with the most unsearched mass per step of distance, then search again; 0 never (the paper)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.escape as u64),
+        set: |c, v| c.escape = int(v) as u32,
+    },
+    Param {
         key: "tree_nodes",
         kind: Kind::Int {
             min: MIN_MAX_NODES as u64,
@@ -832,6 +848,7 @@ impl Default for Config {
             step_cap: 0,
             reset_each_move: false,
             decay: 1.0,
+            escape: 0,
             tree_nodes: 0,
             keep_traces: 0,
             horizon: 0,

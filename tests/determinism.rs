@@ -15,7 +15,7 @@ fn searcher(name: &str) -> SearcherId {
 }
 
 /// The pinned cases' base: the paper's `cells` table (decay 1, kept for the
-/// whole trial), which the pinned fingerprints predate.
+/// whole trial, no escape), which the pinned fingerprints predate.
 fn small() -> Config {
     Config {
         n: 12,
@@ -25,6 +25,7 @@ fn small() -> Config {
         rollout_cap: 400,
         step_cap: 400,
         decay: 1.0,
+        escape: 0,
         ..Config::default()
     }
 }
@@ -111,6 +112,7 @@ fn cases() -> Vec<(&'static str, Config)> {
             Config {
                 belief: Belief::Posterior,
                 decay: Config::default().decay,
+                escape: Config::default().escape,
                 ..small()
             },
         ),
@@ -139,6 +141,15 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            // The paper's table traps; the escape walks it out.
+            "cells escape",
+            Config {
+                escape: 3,
+                prior: PriorKind::Uniform,
+                ..small()
+            },
+        ),
     ]
 }
 
@@ -150,9 +161,10 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// into the config changed no draw. The four Lévy and NSARW cases were
 /// re-pinned in issue 11 when those walks became table-driven: the same laws
 /// from different random draws. The `cells decay` case was added with the
-/// table's decay (issue 11); the others set decay 1, the paper's table, and
+/// table's decay, `cells escape` with the escape from searched ground (both
+/// issue 11); the others set decay 1 and escape 0, the paper's MCTS, and
 /// keep their values.
-const PINNED: [u64; 14] = [
+const PINNED: [u64; 15] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -167,6 +179,7 @@ const PINNED: [u64; 14] = [
     0xa43971504d971172,
     0xec1f7e9f227ae3a8,
     0x2f8ace8c33995f53,
+    0x525ec88472ced1ec,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

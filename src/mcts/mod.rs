@@ -8,9 +8,11 @@ pub mod cells;
 pub mod code;
 pub mod tree;
 
+use crate::coverage::Coverage;
 use crate::lattice::{Move, Torus};
 use crate::named::named_enum;
 use crate::rng::{self, Rng};
+use crate::searchers::plan::{fallback_target, toward};
 use crate::searchers::{Outcome, Policy, Searcher, SearcherInfo, Setup, Visit, World};
 use crate::view::Layer;
 use cells::CellTable;
@@ -30,6 +32,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
         "loops" => c.ms.is_none(),
         "reset_each_move" => c.variant != Variant::Tree,
         "decay" => c.variant == Variant::Cells,
+        "escape" => true,
         "tree_nodes" => c.variant == Variant::Tree,
         "mu" => c.rollout == crate::searchers::PolicyKind::Levy,
         "epsilon" => c.rollout == crate::searchers::PolicyKind::Greedy,
@@ -222,7 +225,21 @@ pub struct Mcts<S: Stats> {
     cells: usize,
     /// The belief's generation at the last decision.
     generation: Option<u64>,
+    /// Moves in a row that searched no new cell.
+    stalled: u32,
+    /// Escape after this many stalled moves (0 = never).
+    escape: u32,
+    /// The cell an escape is heading for.
+    escape_to: Option<u32>,
+    /// An empty simulation, for the fallback target's gains.
+    coverage: Coverage,
 }
+
+/// The default `escape`: stalled moves before an MCTS heads for unsearched
+/// mass. Ten lets the search work its way out of a searched patch on its own
+/// most of the time (a shuttle of 2 or 4 cells is well within it) and bounds
+/// how long a trap can last.
+pub const DEFAULT_ESCAPE: u32 = 10;
 
 impl<S: Stats> Mcts<S> {
     /// A searcher with these statistics, configured by `setup`.
@@ -237,6 +254,10 @@ impl<S: Stats> Mcts<S> {
             reset_each_move: cfg.reset_each_move,
             cells: setup.torus.cells(),
             generation: None,
+            stalled: 0,
+            escape: cfg.escape,
+            escape_to: None,
+            coverage: Coverage::new(setup.torus.cells()),
         }
     }
 }
@@ -244,8 +265,30 @@ impl<S: Stats> Mcts<S> {
 impl<S: Stats> Searcher for Mcts<S> {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
         if !w.budget.is_open() {
-            w.budget.open();
             let generation = w.belief.generation();
+            if self.generation == Some(generation) {
+                self.stalled += 1;
+            } else {
+                self.stalled = 0;
+                self.escape_to = None;
+            }
+            if self.escape > 0 && self.stalled >= self.escape {
+                // Stuck in searched ground: walk to unsearched mass without
+                // deliberating (the target keeps mass until the belief
+                // changes, which ends the escape).
+                if self.escape_to.is_none() {
+                    self.escape_to =
+                        fallback_target(w.torus, w.sensor, w.belief, &self.coverage, w.pos)
+                            .map(|(c, _)| c);
+                }
+                if let Some(target) = self.escape_to {
+                    let m = toward(w.torus, w.pos, target, Move::Up);
+                    self.generation = Some(generation);
+                    self.stats.advance(m);
+                    return Some(m);
+                }
+            }
+            w.budget.open();
             if self.generation.is_some_and(|g| g != generation) {
                 self.stats.belief_changed();
             }
