@@ -468,6 +468,7 @@ mod tests {
                 "mu" => (r#""rollout":"levy""#, "1.5".into()),
                 "epsilon" => (r#""rollout":"greedy""#, "0.3".into()),
                 "tree_nodes" => (r#""variant":"tree""#, p.default.text()),
+                "decay" => (r#""variant":"cells""#, "0.5".into()),
                 "paint" => (r#""prior":"paint""#, paint.clone()),
                 "sigma" | "known" | "prior" => (r#""searcher":"mcts""#, p.default.text()),
                 "target" => (r#""searcher":"mcts""#, "2,2".into()),
