@@ -308,7 +308,7 @@ pub fn summarize_trials(flat: &[f64]) -> Result<JsValue, JsError> {
     }
 }
 
-/// Every named experiment: `[{ name, title, help, kind, defaultTrials }]`.
+/// Every named experiment: `[{ name, title, help, kind, defaultTrials, defaultPreset }]`.
 #[wasm_bindgen(js_name = experimentList)]
 pub fn experiment_list() -> Result<JsValue, JsError> {
     to_js(&experiment::list())

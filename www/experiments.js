@@ -118,9 +118,12 @@ export class ExperimentsView {
 
   /** The controls' values as an experiment query (the URL's form). */
   controlsQuery(changed) {
-    const q = new URLSearchParams([['exp', $('exp-name').value], ['seed', $('exp-seed').value.trim()], ['preset', $('exp-preset').value]]);
-    // A new experiment starts from its own default trials.
-    if (changed !== 'exp-name') q.set('trials', $('exp-trials').value.trim());
+    const q = new URLSearchParams([['exp', $('exp-name').value], ['seed', $('exp-seed').value.trim()]]);
+    // A new experiment starts from its own default trials and preset.
+    if (changed !== 'exp-name') {
+      q.set('trials', $('exp-trials').value.trim());
+      q.set('preset', $('exp-preset').value);
+    }
     return q;
   }
 

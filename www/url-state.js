@@ -225,7 +225,10 @@ export function readExperimentUrl(engine, schema, search, list, presets) {
     else bad('exp', raw, `one of ${names.join(', ')}`, `Using the default exp=${state.name}.`);
   }
   const named = list.find((e) => e.name === state.name);
-  if (named) state.trials = String(named.defaultTrials);
+  if (named) {
+    state.trials = String(named.defaultTrials);
+    state.preset = named.defaultPreset ?? 'none';
+  }
   if (params.has('trials')) {
     const raw = last('trials');
     try {

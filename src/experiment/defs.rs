@@ -10,6 +10,7 @@
 
 use crate::mcts::Variant;
 use crate::named::named_enum;
+use crate::preset::Preset;
 use crate::searchers::REGISTRY;
 
 named_enum! {
@@ -45,6 +46,9 @@ named_enum! {
         Heatmap = "heatmap",
     }
 }
+
+/// The preset of the paper's figures: the authors' code made them.
+pub const PAPER: Preset = Preset::PaperCode;
 
 /// Values every experiment starts from (after the preset): the paper's setting.
 pub const COMMON_DEFAULTS: &[(&str, &str)] =
@@ -109,6 +113,9 @@ pub struct Definition {
     pub references: &'static [ReferenceDef],
     /// A caveat shown with the results.
     pub note: Option<&'static str>,
+    /// The preset a spec without one gets: the paper's figures default to
+    /// the authors' code; the project's own comparisons to none.
+    pub default_preset: Option<Preset>,
 }
 
 impl Definition {
@@ -148,6 +155,27 @@ pub fn every_searcher() -> Vec<SeriesDef> {
         REGISTRY
             .iter()
             .filter(|s| s.name != crate::mcts::INFO.name && !s.name.starts_with("test-"))
+            .filter_map(|s| searcher(s.name)),
+    );
+    v
+}
+
+/// The project's searchers, beyond the paper: MCTS as the page runs it
+/// (every MCTS variant that is not the paper's code, at the defaults), then
+/// every deterministic planner of the registry.
+pub fn best_searchers() -> Vec<SeriesDef> {
+    let mut v: Vec<SeriesDef> = Variant::ALL
+        .iter()
+        .filter(|&&var| var != Variant::Code)
+        .map(|var| SeriesDef {
+            label: format!("MCTS {var}"),
+            params: vec![("searcher", "mcts".into()), ("variant", var.name().into())],
+        })
+        .collect();
+    v.extend(
+        REGISTRY
+            .iter()
+            .filter(|s| s.deterministic && !s.name.starts_with("test-"))
             .filter_map(|s| searcher(s.name)),
     );
     v
@@ -234,6 +262,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: false,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "sigma-sweep",
@@ -254,6 +283,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "delta",
@@ -269,6 +299,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "loops",
@@ -289,6 +320,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "decision-time",
@@ -309,6 +341,28 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: Some(TIMING_NOTE),
+        default_preset: Some(PAPER),
+    },
+    Definition {
+        name: "goals",
+        title: "The project's searchers against the lower bound",
+        help: "N = 40 from (1,1): a delta target, Gaussian σ = 2.5, 5, 10 and a uniform target; MCTS as the page runs it (each variant) and every planner, beside the lower bound on any searcher's mean (issue 11's goals); step cap 20·N²",
+        kind: Kind::Episodes,
+        metric: Metric::Steps,
+        chart: Chart::Box,
+        default_trials: 100,
+        defaults: &[("prior", "gaussian"), ("step_cap", "32000")],
+        x: Some(XDef {
+            key: "sigma",
+            label: SIGMA_LABEL,
+            values: &["0", "2.5", "5", "10", "inf"],
+            log: false,
+        }),
+        series: best_searchers,
+        y_log: true,
+        references: &[],
+        note: None,
+        default_preset: None,
     },
     Definition {
         name: "uniform",
@@ -324,6 +378,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "nsarw-convergence",
@@ -344,6 +399,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "known-n20",
@@ -374,6 +430,7 @@ pub static DEFINITIONS: &[Definition] = &[
             y: &[19.21, 11.29, 6.54, 3.87, 2.03, 1.0],
         }],
         note: Some("step cap 1000 (60× the optimal 16 moves; the authors used 10 000): a trapped tree-variant episode costs L rollouts per move, so --step-cap 10000 can take hours"),
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "belief",
@@ -394,6 +451,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "levy-mu",
@@ -414,6 +472,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: false,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "c-sweep",
@@ -434,6 +493,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: true,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
     Definition {
         name: "custom",
@@ -449,6 +509,7 @@ pub static DEFINITIONS: &[Definition] = &[
         y_log: false,
         references: &[],
         note: None,
+        default_preset: Some(PAPER),
     },
 ];
 

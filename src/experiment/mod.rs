@@ -57,6 +57,8 @@ pub struct ExperimentInfo {
     pub kind: Kind,
     /// Trials per point unless a spec says otherwise.
     pub default_trials: u64,
+    /// The preset a spec without one gets (`None`: no preset).
+    pub default_preset: Option<&'static str>,
 }
 
 /// Every named experiment.
@@ -69,6 +71,7 @@ pub fn list() -> Vec<ExperimentInfo> {
             help: d.help,
             kind: d.kind,
             default_trials: d.default_trials,
+            default_preset: d.default_preset.map(|p| p.name()),
         })
         .collect()
 }

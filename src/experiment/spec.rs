@@ -13,7 +13,7 @@ use crate::preset::Preset;
 /// The preset of a spec that names none: the authors' code, which is what
 /// produced the paper's figures (`EXPERIMENTS.md` compares it with their
 /// numbers); `paper-text` and no preset are a flag away.
-pub const DEFAULT_PRESET: Preset = Preset::PaperCode;
+pub const DEFAULT_PRESET: Preset = super::defs::PAPER;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -413,7 +413,7 @@ impl Spec {
         };
         let preset_allowed = || format!("one of {}, none, or null", Preset::NAMES.join(", "));
         let preset = match obj.get("preset") {
-            None => Some(DEFAULT_PRESET),
+            None => def.default_preset,
             Some(Value::Null) => None,
             Some(Value::String(s)) if s == "none" => None,
             Some(v @ Value::String(s)) => {

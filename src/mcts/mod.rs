@@ -24,6 +24,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "mcts",
     label: "MCTS",
     help: "before each move it runs L loops: a practice target from the belief, UCT selection, a rollout, backpropagation",
+    deterministic: false,
     deliberates: true,
     uses: |c, key| match key {
         "variant" | "rollout" | "belief" | "ms" | "c" | "final" | "rollout_cap" | "keep_traces" => {

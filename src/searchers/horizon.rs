@@ -45,6 +45,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "horizon",
     label: "Receding horizon",
     help: "tries every move sequence of depth h and takes the first move of the one that covers planning mass earliest; heads for the best far cell when that is better",
+    deterministic: true,
     deliberates: false,
     uses: |_, key| key == "horizon",
     build: |s| Box::new(Horizon::new(s.cfg, s.torus)),

@@ -61,6 +61,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "improve",
     label: "Rollout improvement",
     help: "completes the search with a base policy after each of the four moves and follows the completion with the least expected time (never worse than its base)",
+    deterministic: true,
     deliberates: false,
     uses: |c, key| key == "base" || (key == "horizon" && matches!(c.base, Base::Horizon | Base::Best)),
     build: |s| Box::new(Improve::new(s.cfg, s.torus, &s.sensor(), s.start)),

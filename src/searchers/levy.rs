@@ -32,6 +32,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "levy",
     label: "Lévy flight",
     help: "it flies a power-law distributed length (exponent mu) in a uniformly random direction, walked as unit moves",
+    deterministic: false,
     deliberates: false,
     uses: |_, key| key == "mu",
     build: |s| Box::new(Walker::new(Policy::Levy(Levy::new(s.cfg.mu, s.torus.n())), s.start)),

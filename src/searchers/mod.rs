@@ -134,6 +134,11 @@ pub struct SearcherInfo {
     pub help: &'static str,
     /// True when it runs MCTS loops before each move.
     pub deliberates: bool,
+    /// True when its path does not depend on chance: until it detects the
+    /// target the path is a function of the configuration alone, so one
+    /// pass along it gives its exact mean (`crate::exact`). Random walks
+    /// and MCTS draw random numbers.
+    pub deterministic: bool,
     /// True when it reads configuration parameter `key` under `cfg`.
     pub uses: fn(&Config, &str) -> bool,
     /// Builds it for a trial.
@@ -153,17 +158,9 @@ pub static REGISTRY: &[&SearcherInfo] = &[
     &tests::STAND_STILL,
 ];
 
-/// The searchers whose path does not depend on chance: until it detects
-/// the target such a searcher's path is a function of the configuration
-/// alone, so one pass along it gives its exact mean (`crate::exact`).
-/// Random walks and MCTS draw random numbers, so they are not listed.
-/// (A list beside the registry rather than a field of [`SearcherInfo`], so
-/// that entries that predate it need no edit.)
-const DETERMINISTIC: &[&SearcherInfo] = &[&sweep::INFO, &horizon::INFO, &improve::INFO];
-
-/// True when the searcher of `cfg` is deterministic (see [`DETERMINISTIC`]).
+/// True when the searcher of `cfg` is deterministic ([`SearcherInfo::deterministic`]).
 pub fn deterministic(cfg: &Config) -> bool {
-    DETERMINISTIC.iter().any(|s| s.name == cfg.searcher.name())
+    cfg.searcher.info().deterministic
 }
 
 /// The names of the registered searchers.
@@ -295,6 +292,7 @@ mod tests {
         name: "test-shuttle",
         label: "Shuttle (test)",
         help: "steps up, then down, for ever",
+        deterministic: true,
         deliberates: false,
         uses: |_, _| false,
         build: |_| Box::new(StandStill { up: false }),

@@ -10,6 +10,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "nsarw",
     label: "NSARW",
     help: "each step goes to a least-visited neighbour, ties broken at random",
+    deterministic: false,
     deliberates: false,
     uses: |_, _| false,
     build: |s| {

@@ -9,6 +9,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "rw",
     label: "Random walk",
     help: "each step is one of the four moves, uniformly at random",
+    deterministic: false,
     deliberates: false,
     uses: |_, _| false,
     build: |s| Box::new(Walker::new(Policy::Rw(RandomWalk), s.start)),

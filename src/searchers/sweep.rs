@@ -37,6 +37,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
     name: "sweep",
     label: "Sweep",
     help: "a fixed lawnmower or helix over the whole torus from the start, ignoring the prior",
+    deterministic: true,
     deliberates: false,
     uses: |_, key| key == "sweep_pattern",
     build: |s| {
