@@ -102,15 +102,23 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            "pomcp (the belief MCTS)",
+            Config {
+                variant: Variant::Pomcp,
+                ..small()
+            },
+        ),
     ]
 }
 
 /// The pinned fingerprints, in `cases()` order (seed 2026, 4 trials each).
-/// The `code` case was added with that variant (issue 10); the others are
+/// The `code` case was added with that variant (issue 10), the `pomcp` case
+/// with the belief MCTS (issue 11); the others are
 /// unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
 /// into the config changed no draw.
-const PINNED: [u64; 10] = [
+const PINNED: [u64; 11] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0x7282bdec7ebf2054,
@@ -121,6 +129,7 @@ const PINNED: [u64; 10] = [
     0x36e45bc50047197e,
     0x26e4c300bda0f588,
     0x6388de00944dcf87,
+    0x5e5ed74c88a0082f,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

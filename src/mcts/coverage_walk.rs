@@ -49,6 +49,10 @@ const FRONT: f64 = 3.0;
 /// dearest part, and a good local gain rarely loses to a remote cell.
 const SEARCH_BELOW: f64 = 0.125;
 
+/// Up to this many cells with mass left, the waypoint search scans them
+/// instead of walking rings (a ring walk to a far delta crosses the lattice).
+const FEW: usize = 64;
+
 /// The best waypoint found so far, ties kept uniformly at random.
 #[derive(Default)]
 struct Best {
@@ -135,6 +139,21 @@ impl CoverageWalk {
             return None;
         }
         let mass = belief.plan_mass();
+        if self.order.len() - self.sim <= FEW {
+            // Few cells hold mass (a delta prior): scan them, not rings.
+            let mut best = Best {
+                ratio: floor,
+                pick: None,
+                ties: 0,
+            };
+            for &c in &self.order[self.sim..] {
+                if !cov.covered(belief, c) {
+                    let r = mass[c as usize] / (torus.l1(cell, c) + 1) as f64;
+                    best.offer(c, r, rng);
+                }
+            }
+            return best.pick.map(|c| (c, best.ratio));
+        }
         let n = torus.n() as i64;
         let (lo, hi) = (-((n - 1) / 2), n / 2);
         let (x, y) = torus.xy(cell);
