@@ -101,6 +101,12 @@ impl BeliefState {
         if self.kind == Belief::Prior {
             return self.planning().sample(rng);
         }
+        self.posterior_target(rng)
+    }
+
+    /// A practice target from the posterior, whatever this belief's kind
+    /// (the belief MCTS plans on the posterior by construction).
+    pub fn posterior_target(&mut self, rng: &mut Rng) -> u32 {
         // Rejection from the prior is exact for the posterior and cheap while
         // much mass remains; past a few misses fall back to an alias table.
         for _ in 0..8 {

@@ -10,6 +10,7 @@
 use crate::belief::Belief;
 use crate::lattice::{Torus, MAX_N, MIN_N};
 use crate::mcts::cells::DEFAULT_DECAY;
+use crate::mcts::pomcp::Scale;
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::preset::Preset;
@@ -80,6 +81,11 @@ pub struct Config {
     pub escape: u32,
     /// `tree`: arena cap in nodes.
     pub tree_nodes: u32,
+    /// `pomcp`: how returns are scaled for UCT.
+    pub pomcp_scale: Scale,
+    /// `pomcp`: the posterior mass left below which a return stops counting
+    /// expected time exactly and samples the practice target's.
+    pub pomcp_exact: f64,
     /// How many recent rollout traces to keep for drawing (0 = none).
     pub keep_traces: u32,
     /// Planners: the receding horizon's depth h.
@@ -759,6 +765,30 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.tree_nodes = u32_of(v),
     },
     Param {
+        key: "pomcp_scale",
+        kind: Kind::Choice(|| Scale::NAMES.to_vec()),
+        default: Value::Name(Cow::Borrowed("range")),
+        help: "pomcp: how returns are scaled for UCT: range (by the spread of returns seen this decision) or left (as a fraction of the expected steps left)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Name(Cow::Borrowed(c.pomcp_scale.name())),
+        set: |c, v| c.pomcp_scale = Scale::parse(name(v)).unwrap_or(c.pomcp_scale),
+    },
+    Param {
+        key: "pomcp_exact",
+        kind: Kind::Float {
+            min: 0.0,
+            max: 1.0,
+            min_open: false,
+        },
+        default: Value::Float(0.01),
+        help: "pomcp: a return counts the expected steps exactly until this share of the posterior is left, then samples the practice target's (1 = sampled only, 0 = exact to the end)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Float(c.pomcp_exact),
+        set: |c, v| c.pomcp_exact = float(v),
+    },
+    Param {
         key: "keep_traces",
         kind: Kind::Int { min: 0, max: 64 },
         default: Value::Int(0),
@@ -850,6 +880,8 @@ impl Default for Config {
             decay: 1.0,
             escape: 0,
             tree_nodes: 0,
+            pomcp_scale: Scale::Range,
+            pomcp_exact: 0.0,
             keep_traces: 0,
             horizon: 0,
             base: Base::Cover,
@@ -1005,9 +1037,14 @@ impl Config {
         let budget = self
             .ms
             .map_or_else(|| format!("L={}", self.loops), |ms| format!("{ms} ms"));
+        // The belief MCTS rolls out with its own coverage walk.
+        let rollout = match self.variant {
+            Variant::Pomcp => "coverage",
+            _ => self.rollout.name(),
+        };
         format!(
-            "{} {} · {} rollouts · {budget}",
-            info.label, self.variant, self.rollout
+            "{} {} · {rollout} rollouts · {budget}",
+            info.label, self.variant
         )
     }
 

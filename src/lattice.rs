@@ -326,11 +326,23 @@ impl Sensor {
 /// The cells at `offsets` from `cell` on an `n`×`n` torus. A free function
 /// so that `arm` can write the mask while it borrows only the offsets.
 fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> + '_ {
-    let (x, y) = ((cell % n) as i64, (cell / n) as i64);
-    let n = n as i64;
-    offsets.iter().map(move |&(dx, dy)| {
-        ((y + dy as i64).rem_euclid(n) * n + (x + dx as i64).rem_euclid(n)) as u32
-    })
+    let (x, y) = ((cell % n) as i32, (cell / n) as i32);
+    let n = n as i32;
+    // Offsets are torus displacements, |d| ≤ n/2, so one correction wraps
+    // a coordinate: no division per cell (the belief planners and the
+    // belief MCTS sweep discs in their inner loops).
+    let wrap = move |v: i32| {
+        if v < 0 {
+            v + n
+        } else if v >= n {
+            v - n
+        } else {
+            v
+        }
+    };
+    offsets
+        .iter()
+        .map(move |&(dx, dy)| (wrap(y + dy) * n + wrap(x + dx)) as u32)
 }
 
 #[cfg(test)]

@@ -150,12 +150,20 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            "pomcp (the belief MCTS)",
+            Config {
+                variant: Variant::Pomcp,
+                ..small()
+            },
+        ),
     ]
 }
 
 /// The pinned fingerprints, in `cases()` order (seed 2026, 4 trials each).
 /// The `code` case was added with that variant (issue 10), the sweep,
-/// horizon and improve cases with those planners (issue 11); the others
+/// horizon and improve cases with those planners, the `pomcp` case with the
+/// belief MCTS (issue 11); the others
 /// are unchanged.
 /// They were pinned when the seed was still a separate argument: moving it
 /// into the config changed no draw. The four Lévy and NSARW cases were
@@ -164,7 +172,7 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// table's decay, `cells escape` with the escape from searched ground (both
 /// issue 11); the others set decay 1 and escape 0, the paper's MCTS, and
 /// keep their values.
-const PINNED: [u64; 15] = [
+const PINNED: [u64; 16] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -180,6 +188,7 @@ const PINNED: [u64; 15] = [
     0xec1f7e9f227ae3a8,
     0x2f8ace8c33995f53,
     0x525ec88472ced1ec,
+    0x5e5ed74c88a0082f,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

@@ -469,6 +469,8 @@ mod tests {
                 "epsilon" => (r#""rollout":"greedy""#, "0.3".into()),
                 "tree_nodes" => (r#""variant":"tree""#, p.default.text()),
                 "decay" => (r#""variant":"cells""#, "0.5".into()),
+                "pomcp_scale" => (r#""variant":"pomcp""#, "left".into()),
+                "pomcp_exact" => (r#""variant":"pomcp""#, "0.5".into()),
                 "paint" => (r#""prior":"paint""#, paint.clone()),
                 "sigma" | "known" | "prior" => (r#""searcher":"mcts""#, p.default.text()),
                 "target" => (r#""searcher":"mcts""#, "2,2".into()),

@@ -3,12 +3,18 @@
 //! * [`cells`] keeps statistics per lattice cell, as the paper and its code do.
 //! * [`tree`] keeps a real search tree of move sequences.
 //! * [`code`] keeps the per-cell statistics of the authors' MATLAB code.
+//! * [`pomcp`] plans on the belief (POMCP-style): posterior practice
+//!   targets, a reused tree, returns that suit UCT, [`coverage_walk`] rollouts.
 
 pub mod cells;
 pub mod code;
+pub mod coverage_walk;
+pub mod pomcp;
 pub mod tree;
 
+use crate::belief::BeliefState;
 use crate::coverage::Coverage;
+use crate::lattice::Sensor;
 use crate::lattice::{Move, Torus};
 use crate::named::named_enum;
 use crate::rng::{self, Rng};
@@ -17,6 +23,7 @@ use crate::searchers::{Outcome, Policy, Searcher, SearcherInfo, Setup, Visit, Wo
 use crate::view::Layer;
 use cells::CellTable;
 use code::CodeTable;
+use pomcp::BeliefTree;
 use tree::Tree;
 
 /// MCTS as a searcher: the variant (`cells` or `tree`) keeps the statistics.
@@ -26,18 +33,22 @@ pub static INFO: SearcherInfo = SearcherInfo {
     help: "before each move it runs L loops: a practice target from the belief, UCT selection, a rollout, backpropagation",
     deterministic: false,
     deliberates: true,
-    uses: |c, key| match key {
-        "variant" | "rollout" | "belief" | "ms" | "c" | "final" | "rollout_cap" | "keep_traces" => {
-            true
+    uses: |c, key| {
+        // The belief MCTS always plans on the posterior with its own rollout.
+        let pomcp = c.variant == Variant::Pomcp;
+        match key {
+            "variant" | "ms" | "c" | "final" | "rollout_cap" | "keep_traces" => true,
+            "rollout" | "belief" => !pomcp,
+            "loops" => c.ms.is_none(),
+            "reset_each_move" => c.variant != Variant::Tree && !pomcp,
+            "tree_nodes" => c.variant == Variant::Tree || pomcp,
+            "pomcp_scale" | "pomcp_exact" => pomcp,
+            "decay" => c.variant == Variant::Cells,
+            "escape" => true,
+            "mu" => !pomcp && c.rollout == crate::searchers::PolicyKind::Levy,
+            "epsilon" => !pomcp && c.rollout == crate::searchers::PolicyKind::Greedy,
+            _ => false,
         }
-        "loops" => c.ms.is_none(),
-        "reset_each_move" => c.variant != Variant::Tree,
-        "decay" => c.variant == Variant::Cells,
-        "escape" => true,
-        "tree_nodes" => c.variant == Variant::Tree,
-        "mu" => c.rollout == crate::searchers::PolicyKind::Levy,
-        "epsilon" => c.rollout == crate::searchers::PolicyKind::Greedy,
-        _ => false,
     },
     build: |s| match s.cfg.variant {
         Variant::Cells => Box::new(Mcts::new(
@@ -46,6 +57,15 @@ pub static INFO: SearcherInfo = SearcherInfo {
         )),
         Variant::Tree => Box::new(Mcts::new(Tree::new(s.cfg.tree_nodes), s)),
         Variant::Code => Box::new(Mcts::new(CodeTable::new(s.torus.cells()), s)),
+        Variant::Pomcp => Box::new(Mcts::new(
+            BeliefTree::new(
+                s.torus.cells(),
+                s.cfg.tree_nodes,
+                s.cfg.pomcp_scale,
+                s.cfg.pomcp_exact,
+            ),
+            s,
+        )),
     },
 };
 
@@ -58,6 +78,9 @@ named_enum! {
         Tree = "tree",
         /// The statistics of the authors' `MCTSgaussian.m` (the `paper-code` preset).
         Code = "code",
+        /// A belief MCTS (POMCP-style): posterior practice targets, a reused
+        /// tree, range-scaled expected-time returns, coverage-walk rollouts.
+        Pomcp = "pomcp",
     }
 }
 
@@ -199,6 +222,9 @@ pub fn leading(view: &DecisionView, rule: FinalRule) -> [bool; 4] {
 
 /// A variant's statistics: what [`Mcts`] needs from `cells` and `tree`.
 pub trait Stats {
+    /// True when practice targets come from the posterior whatever the
+    /// `belief` parameter says.
+    const POSTERIOR_TARGETS: bool = false;
     /// Starts a decision at `root`; `reset` clears persistent statistics.
     fn begin_decision(&mut self, root: u32, reset: bool);
     /// One loop from `root`: select, roll out, backpropagate.
@@ -213,6 +239,10 @@ pub trait Stats {
     /// The belief changed since the last decision (a move searched new
     /// cells): statistics gathered for the old belief are now stale.
     fn belief_changed(&mut self) {}
+    /// The cells the statistics mean to enter next (see [`Searcher::intent`]).
+    fn intent(&self) -> &[u32] {
+        &[]
+    }
 }
 
 /// UCT search with a variant's statistics and a rollout policy.
@@ -298,10 +328,16 @@ impl<S: Stats> Searcher for Mcts<S> {
         }
         let mut done = 0;
         while done < max_loops && !w.budget.spent() {
-            let practice = w.belief.practice_target(w.rng);
+            let practice = if S::POSTERIOR_TARGETS {
+                w.belief.posterior_target(w.rng)
+            } else {
+                w.belief.practice_target(w.rng)
+            };
             w.sensor.arm(practice);
             let mut env = LoopEnv {
                 torus: w.torus,
+                belief: w.belief,
+                sensor: w.sensor,
                 mask: w.sensor.mask(),
                 practice,
                 policy: &mut self.policy,
@@ -337,12 +373,20 @@ impl<S: Stats> Searcher for Mcts<S> {
     fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView> {
         Some(self.stats.view(torus, pos, self.c))
     }
+
+    fn intent(&self) -> &[u32] {
+        self.stats.intent()
+    }
 }
 
 /// What one MCTS loop needs besides the variant's own statistics.
 pub struct LoopEnv<'a> {
     /// The lattice.
     pub torus: &'a Torus,
+    /// What is known about the target (the belief MCTS plans on it).
+    pub belief: &'a BeliefState,
+    /// The detection sensor, armed with the practice target.
+    pub sensor: &'a Sensor,
     /// Detection mask of the practice target.
     pub mask: &'a [u8],
     /// The practice target.
