@@ -542,6 +542,49 @@ test('race mode: same target and seed, side by side, with a scoreboard', { timeo
   });
 });
 
+test("race: the paper's MCTS against the belief MCTS, both to found, on the same target and seed", { timeout: 240_000 }, async () => {
+  await withApp('?preset=paper-code&race=mcts-pomcp&n=16&sigma=2&seed=5&speed=max', async (page) => {
+    const runs = await page.evaluate(() => window.torusTest.runs());
+    assert.deepEqual(runs.map((r) => r.config.variant), ['code', 'pomcp']);
+    assert.equal(runs[0].target, runs[1].target);
+    await page.waitForFunction(() => window.torusTest.runs().every((r) => r.status !== 'running'), null, { timeout: 200_000 });
+    const done = await page.evaluate(() => window.torusTest.runs());
+    assert.deepEqual(done.map((r) => r.status), ['found', 'found']);
+    assert.ok(done.every((r) => r.steps >= r.optimal), 'no run beats the optimum');
+  });
+});
+
+test("a planner draws its path ahead and the decision panel shows its scores of the four moves", { timeout: 120_000 }, async () => {
+  await withApp('?searcher=horizon&n=20&sigma=3&speed=1', async (page) => {
+    await page.waitForFunction(() => {
+      const r = window.torusTest.runs()[0];
+      return r && r.steps >= 2 && r.scores && r.intent.length > 1;
+    }, null, { timeout: 60_000 });
+    // One look at the run (the search goes on between evaluations).
+    const [r, path] = await page.evaluate(() => [window.torusTest.runs()[0], window.torusTest.path()]);
+    assert.equal(r.scores.score.length, 4);
+    assert.ok(r.scores.chosen >= 0 && r.scores.chosen < 4);
+    assert.match(r.scores.meaning, /\w/);
+    // The path ahead starts where the searcher stands and moves one cell a step.
+    assert.equal(r.intent[0], path.at(-1));
+    const n = r.n;
+    for (let i = 1; i < r.intent.length; i++) {
+      const [a, b] = [r.intent[i - 1], r.intent[i]];
+      const dx = Math.min(Math.abs((a % n) - (b % n)), n - Math.abs((a % n) - (b % n)));
+      const dy = Math.min(Math.abs(Math.floor(a / n) - Math.floor(b / n)), n - Math.abs(Math.floor(a / n) - Math.floor(b / n)));
+      assert.equal(dx + dy, 1, `intent step ${i}: ${a} → ${b}`);
+    }
+    await page.waitForFunction(() => !document.getElementById('plan-scores').hidden, null, { timeout: 10_000 });
+    assert.equal(await page.locator('#decision').isVisible(), false, 'the UCT table gives way to the scores');
+    assert.equal(await page.locator('#plan-scores tbody tr').count(), 4);
+    assert.equal(await page.locator('#plan-scores tbody tr.chosen').count(), 1);
+    assert.match(await text(page, '#decision-note'), /scores each move by/);
+    // Unticking "Planned path" stops the frames carrying it.
+    await page.uncheck('#layer-intent');
+    await page.waitForFunction(() => window.torusTest.runs()[0].intent.length === 0, null, { timeout: 10_000 });
+  });
+});
+
 test('teaching view, clicking the grid sets the start, painting a prior', { timeout: 180_000 }, async () => {
   await withApp('?autoplay=0', async (page) => {
     await page.click('#teaching');
