@@ -42,6 +42,7 @@
 
 use crate::config::{Config, ConfigError};
 use crate::lattice::{Move, Sensor, Torus};
+use crate::stats::Sum;
 use std::collections::VecDeque;
 use std::fmt;
 
@@ -371,30 +372,6 @@ pub fn dp_optimum(
     }
     let s = start as usize;
     Ok(j[foot[s] as usize * cells + s])
-}
-
-/// Neumaier-compensated sum: the bound adds tens of thousands of terms
-/// and subtracts nearly equal totals.
-#[derive(Clone, Copy, Default)]
-struct Sum {
-    s: f64,
-    c: f64,
-}
-
-impl Sum {
-    fn add(&mut self, x: f64) {
-        let t = self.s + x;
-        self.c += if self.s.abs() >= x.abs() {
-            (self.s - t) + x
-        } else {
-            (x - t) + self.s
-        };
-        self.s = t;
-    }
-
-    fn value(&self) -> f64 {
-        self.s + self.c
-    }
 }
 
 /// The greedy solution of the relaxation, advanced one move at a time.

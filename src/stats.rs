@@ -31,6 +31,34 @@ pub fn t975(df: u64) -> f64 {
     }
 }
 
+/// A Neumaier-compensated running sum, for sums of many small terms or of
+/// nearly cancelling ones (the bound, exact path means, planners).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Sum {
+    s: f64,
+    c: f64,
+}
+
+impl Sum {
+    /// Adds `x`.
+    #[inline]
+    pub fn add(&mut self, x: f64) {
+        let t = self.s + x;
+        self.c += if self.s.abs() >= x.abs() {
+            (self.s - t) + x
+        } else {
+            (x - t) + self.s
+        };
+        self.s = t;
+    }
+
+    /// The sum.
+    #[inline]
+    pub fn value(&self) -> f64 {
+        self.s + self.c
+    }
+}
+
 /// Mean, standard deviation and 95% CI of a sample.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct MeanCi {

@@ -149,30 +149,5 @@ fn cell_goal(torus: &Torus, belief: &BeliefState, cov: &Coverage, pos: u32) -> O
     best.map(|(c, _)| c)
 }
 
-/// Neumaier-compensated running sum (a completed search adds thousands of
-/// small terms).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Sum {
-    s: f64,
-    c: f64,
-}
-
-impl Sum {
-    /// Adds `x`.
-    #[inline]
-    pub fn add(&mut self, x: f64) {
-        let t = self.s + x;
-        self.c += if self.s.abs() >= x.abs() {
-            (self.s - t) + x
-        } else {
-            (x - t) + self.s
-        };
-        self.s = t;
-    }
-
-    /// The sum.
-    #[inline]
-    pub fn value(&self) -> f64 {
-        self.s + self.c
-    }
-}
+/// A completed search adds thousands of small terms: compensated.
+pub use crate::stats::Sum;
