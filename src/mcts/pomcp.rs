@@ -433,22 +433,13 @@ impl Stats for BeliefTree {
             self.intent.clear();
             return;
         }
-        self.scratch.clear();
-        self.stack.clear();
-        self.scratch.push(self.nodes[keep as usize]);
-        self.stack.push((keep, 0));
-        while let Some((old, new)) = self.stack.pop() {
-            let kids = self.nodes[old as usize].children;
-            for (i, &k) in kids.iter().enumerate() {
-                if k != NONE {
-                    let id = self.scratch.len() as u32;
-                    self.scratch.push(self.nodes[k as usize]);
-                    self.scratch[new as usize].children[i] = id;
-                    self.stack.push((k, id));
-                }
-            }
-        }
-        std::mem::swap(&mut self.nodes, &mut self.scratch);
+        super::tree::reroot(
+            &mut self.nodes,
+            &mut self.scratch,
+            &mut self.stack,
+            keep,
+            |n| &mut n.children,
+        );
         self.rescale = true;
         self.update_intent();
     }

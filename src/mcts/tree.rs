@@ -225,22 +225,42 @@ impl Stats for Tree {
             self.nodes.clear();
             return;
         }
-        // Copy the kept subtree depth-first into the scratch arena, then swap.
-        self.scratch.clear();
-        self.stack.clear();
-        self.scratch.push(self.nodes[keep as usize]);
-        self.stack.push((keep, 0));
-        while let Some((old, new)) = self.stack.pop() {
-            let kids = self.nodes[old as usize].children;
-            for (i, &k) in kids.iter().enumerate() {
-                if k != NONE {
-                    let id = self.scratch.len() as u32;
-                    self.scratch.push(self.nodes[k as usize]);
-                    self.scratch[new as usize].children[i] = id;
-                    self.stack.push((k, id));
-                }
+        reroot(
+            &mut self.nodes,
+            &mut self.scratch,
+            &mut self.stack,
+            keep,
+            |n| &mut n.children,
+        );
+    }
+}
+
+/// Re-roots an arena tree at node `keep`: copies its subtree depth-first
+/// into `scratch` (root first, child links renumbered), then swaps the two,
+/// so the arena holds only what is kept and its old room is reused. Shared
+/// by the `tree` and `pomcp` variants, whose nodes differ but link alike
+/// (`children`, `u32::MAX` for none).
+pub(crate) fn reroot<N: Copy>(
+    nodes: &mut Vec<N>,
+    scratch: &mut Vec<N>,
+    stack: &mut Vec<(u32, u32)>,
+    keep: u32,
+    children: fn(&mut N) -> &mut [u32; 4],
+) {
+    scratch.clear();
+    stack.clear();
+    scratch.push(nodes[keep as usize]);
+    stack.push((keep, 0));
+    while let Some((old, new)) = stack.pop() {
+        let kids = *children(&mut nodes[old as usize]);
+        for (i, &k) in kids.iter().enumerate() {
+            if k != NONE {
+                let id = scratch.len() as u32;
+                scratch.push(nodes[k as usize]);
+                children(&mut scratch[new as usize])[i] = id;
+                stack.push((k, id));
             }
         }
-        std::mem::swap(&mut self.nodes, &mut self.scratch);
     }
+    std::mem::swap(nodes, scratch);
 }
