@@ -6,25 +6,12 @@
 // warm-up move. Prints one JSON object and a table with wasm ÷ native.
 // Usage: node benches/moves.mjs [--seconds S] [--no-native]
 import { execFileSync } from 'node:child_process';
-import { existsSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { ROOT, loadPkg, secondsArg } from './wasm-pkg.mjs';
 
-const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const args = process.argv.slice(2);
-const at = args.indexOf('--seconds');
-const seconds = at >= 0 ? Number(args[at + 1]) : 0.4;
-if (!(seconds > 0 && seconds <= 600)) {
-  console.error(`error: --seconds must be a number in (0, 600], got ${args[at + 1]}`);
-  process.exit(2);
-}
-const pkg = path.join(ROOT, 'www/pkg');
-if (!existsSync(path.join(pkg, 'torus_search_bg.wasm'))) {
-  console.error('error: www/pkg is missing; run `make build` first');
-  process.exit(2);
-}
-const wasm = await import(path.join(pkg, 'torus_search.js'));
-wasm.initSync({ module: readFileSync(path.join(pkg, 'torus_search_bg.wasm')) });
+const seconds = secondsArg(args, 0.4);
+const wasm = await loadPkg();
 
 /** ms per move of `config` in wasm: one warm-up move, then single moves for `seconds` (as the CLI does). */
 function msPerMove(config) {
