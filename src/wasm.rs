@@ -6,7 +6,9 @@
 //! transfers them to the page). Every fallible function returns
 //! `Result<_, JsError>`, so bad input becomes a JS exception with a message,
 //! never a panic; a panic (a bug) is caught by the hook installed in
-//! [`start`], logged, and its text kept for [`last_panic`].
+//! [`start`], logged, and its text kept for [`last_panic`]. An allocation
+//! that fails (the instance is out of memory) aborts with no message, so
+//! the global allocator notes its size for [`last_out_of_memory`] first.
 
 use crate::config::{self, Config};
 use crate::episode::{Episode, TrialResult, TRIAL_FIELDS};
@@ -21,6 +23,44 @@ use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
+
+/// The system allocator, noting the size of the last allocation it could
+/// not make: Rust then aborts (a bare `unreachable` trap in wasm), and the
+/// page reads the size to say the engine ran out of memory.
+#[cfg(target_arch = "wasm32")]
+mod oom {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    pub static FAILED_BYTES: AtomicUsize = AtomicUsize::new(0);
+
+    pub struct Noting;
+
+    #[inline]
+    fn note(p: *mut u8, bytes: usize) -> *mut u8 {
+        if p.is_null() {
+            FAILED_BYTES.store(bytes.max(1), Ordering::Relaxed);
+        }
+        p
+    }
+
+    // SAFETY: every call is forwarded unchanged to `System`, which upholds
+    // the `GlobalAlloc` contract; only a null result is noted.
+    unsafe impl GlobalAlloc for Noting {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            note(System.alloc(layout), layout.size())
+        }
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            System.dealloc(ptr, layout)
+        }
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+            note(System.realloc(ptr, layout, new_size), new_size)
+        }
+    }
+
+    #[global_allocator]
+    static ALLOCATOR: Noting = Noting;
+}
 
 /// Installs the panic hook (runs once when the module is instantiated).
 #[wasm_bindgen(start)]
@@ -67,6 +107,41 @@ pub fn memory_bytes() -> f64 {
     #[cfg(not(target_arch = "wasm32"))]
     {
         0.0
+    }
+}
+
+/// The size in bytes of the last allocation that failed, if any (read
+/// after a `RuntimeError`: a failed allocation aborts the instance).
+#[wasm_bindgen(js_name = lastOutOfMemory)]
+pub fn last_out_of_memory() -> Option<f64> {
+    #[cfg(target_arch = "wasm32")]
+    {
+        match oom::FAILED_BYTES.load(std::sync::atomic::Ordering::Relaxed) {
+            0 => None,
+            b => Some(b as f64),
+        }
+    }
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        None
+    }
+}
+
+/// Allocates 256 MiB blocks and keeps them until an allocation fails, so
+/// tests can check that running out of memory reaches the page. wasm32
+/// memory ends at 4 GiB, so this aborts after at most 16 blocks.
+#[wasm_bindgen(js_name = oomForTest)]
+pub fn oom_for_test() {
+    let mut hoard: Vec<Vec<u8>> = Vec::with_capacity(64);
+    loop {
+        let mut block = Vec::<u8>::with_capacity(256 << 20);
+        block.push(1);
+        hoard.push(block);
+        if hoard.len() == hoard.capacity() {
+            // Unreachable in wasm32 (64 blocks are 16 GiB); natively it
+            // would only eat the host's memory.
+            return;
+        }
     }
 }
 

@@ -45,10 +45,18 @@ export function schema() {
 export function describeError(err) {
   if (err instanceof WebAssembly.RuntimeError && compiled) {
     let panic = null;
+    let oom = null;
+    let memory = null;
     try {
       panic = wasm.lastPanic();
+      oom = wasm.lastOutOfMemory();
+      memory = wasm.memoryBytes();
     } catch {
       /* the module may be unusable after a trap */
+    }
+    if (!panic && oom) {
+      const mib = (b) => `${(b / 2 ** 20).toFixed(0)} MiB`;
+      return `The engine ran out of memory: it could not allocate ${mib(oom)} more, with ${mib(memory ?? 0)} of WebAssembly memory in use (4096 MiB at most). Restart to try again, with a smaller lattice or fewer tree nodes.`;
     }
     return `The engine crashed (wasm panic): ${(panic || err.message).replace(/\s*\n\s*/g, ' ')}. Restart to try again; if it persists please report it with the copied link.`;
   }

@@ -17,6 +17,7 @@
 //   benchLoops { config, loops }        answers { loops, ms }: one timed wasm call
 //   usage                               answers { usage: { wallMs, workMs, frameMs, frames, memoryBytes } } since the last call
 //   panicForTest { message }            a deliberate wasm panic (the page's error path is tested with it)
+//   oomForTest                          allocates until wasm memory runs out (a real out-of-memory abort)
 // Every answer carries the run generation `gen`, so the page drops answers
 // meant for runs it has already replaced.
 
@@ -175,6 +176,10 @@ const HANDLERS = {
     const [loops] = st.wasm.benchMctsLoops(msg.config, msg.loops);
     return { loops, ms: performance.now() - t0 };
   },
+  oomForTest() {
+    st.wasm.oomForTest();
+    return {};
+  },
   panicForTest(msg) {
     st.wasm.panicForTest(msg.message);
     return {};
@@ -192,7 +197,7 @@ self.onmessage = async (e) => {
     self.postMessage({ id: msg.id, gen: st.gen, ok: false, error: 'the engine crashed earlier: restart the page', trap: true });
     return;
   }
-  if (!st.race && !['init', 'reset', 'benchLoops', 'usage', 'panicForTest', 'play', 'pause', 'speed'].includes(msg.type)) {
+  if (!st.race && !['init', 'reset', 'benchLoops', 'usage', 'panicForTest', 'oomForTest', 'play', 'pause', 'speed'].includes(msg.type)) {
     self.postMessage({ id: msg.id, gen: st.gen, ok: false, error: `${msg.type}: no runs yet` });
     return;
   }

@@ -9,7 +9,7 @@
 //                      target, optimal, status, steps, pathLen, work, rolloutSteps }
 //   path(i = 0)        run i's path so far (cells, start first)
 //   dispatch(cmd)      a controller command (see www/controller.js)
-//   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest)
+//   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers
 //   view()             which view is shown: live | experiments; show(view) switches

@@ -358,15 +358,39 @@ test('a hidden (minimised) window for 30 s: no burst of frames, no long task, th
       window.__long = [];
       new PerformanceObserver((l) => window.__long.push(...l.getEntries().map((e) => [Math.round(e.startTime), Math.round(e.duration)]))).observe({ type: 'longtask' });
     });
+    // Headless Chromium keeps a minimised window (and a background tab)
+    // `visible` with animation frames running, so the test also does what a
+    // browser does to a hidden tab: no animation frame while it is hidden,
+    // `document.visibilityState` 'hidden' with a visibilitychange event,
+    // then the held callbacks run once, 30 s later, when it is shown.
+    await page.evaluate(() => {
+      const raf = window.requestAnimationFrame.bind(window);
+      const held = [];
+      let hidden = false;
+      const flip = (h) => {
+        hidden = h;
+        document.dispatchEvent(new Event('visibilitychange'));
+        if (!h) for (const fn of held.splice(0)) raf(fn);
+      };
+      window.requestAnimationFrame = (fn) => (hidden ? (held.push(fn), 0) : raf(fn));
+      Object.defineProperty(document, 'visibilityState', { configurable: true, get: () => (hidden ? 'hidden' : 'visible') });
+      Object.defineProperty(document, 'hidden', { configurable: true, get: () => hidden });
+      window.__setHidden = flip;
+    });
     const cdp = await page.context().newCDPSession(page);
     const { windowId } = await cdp.send('Browser.getWindowForTarget');
     await cdp.send('Browser.setWindowBounds', { windowId, bounds: { windowState: 'minimized' } });
+    await page.evaluate(() => window.__setHidden(true));
     await page.waitForTimeout(500);
     const before = await page.evaluate(() => window.torusTest.path());
+    await page.evaluate(() => window.torusTest.watchFrames());
     await page.waitForTimeout(30_000);
+    assert.deepEqual(await page.evaluate(() => window.torusTest.frameLog()), [], 'nothing is drawn while hidden');
+    assert.deepEqual(await page.evaluate(() => window.torusTest.path()), before, 'the path shown does not move while hidden');
     await page.evaluate(() => window.torusTest.watchFrames());
     const shown = await page.evaluate(() => performance.now());
     await cdp.send('Browser.setWindowBounds', { windowId, bounds: { windowState: 'normal' } });
+    await page.evaluate(() => window.__setHidden(false));
     const t0 = Date.now();
     await page.waitForTimeout(1000);
     const log = await page.evaluate(() => window.torusTest.frameLog());
@@ -518,6 +542,24 @@ test('a wasm panic shows a readable message and sets state error', { timeout: 12
     await page.click('#play');
     assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
+  }, { allowErrors: true });
+});
+
+test('running out of wasm memory in the search worker shows a readable message, and Restart recovers', { timeout: 180_000 }, async () => {
+  await withApp('?autoplay=0&n=12', async (page, report) => {
+    // A real out-of-memory abort: the worker's instance allocates until its
+    // linear memory cannot grow (4 GiB), and Rust aborts with a bare trap.
+    await page.evaluate(() => window.torusTest.request('oomForTest', {}));
+    await waitState(page, 'error', 120_000);
+    const msg = await text(page, '#message');
+    assert.match(msg, /ran out of memory: it could not allocate \d+ MiB more, with \d+ MiB of WebAssembly memory in use/);
+    assert.doesNotMatch(msg, /unreachable/);
+    assert.equal(await canvasIsBlank(page, '#view-0'), false);
+    await expectText(page, '#play', 'Restart');
+    await page.click('#play');
+    assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
+    assert.deepEqual(report.consoleErrors.filter((e) => e.startsWith('uncaught')), [], 'nothing escapes uncaught');
   }, { allowErrors: true });
 });
 
