@@ -99,7 +99,12 @@ async function scenario(spec) {
     // A user stops a batch that takes too long; stopping is part of the soak.
     const over = () => ['done', 'error', 'stopped'].includes(document.body.dataset.batch);
     if (!(await page.waitForFunction(over, null, { timeout: spec.ms }).then(() => true, () => false))) {
-      await page.click('#batch-stop');
+      // The batch may end between the wait and the click (Stop is then
+      // disabled): click only a live Stop, then the batch must be over.
+      await page.evaluate(() => {
+        const stop = document.getElementById('batch-stop');
+        if (!stop.disabled) stop.click();
+      });
       await page.waitForFunction(over, null, { timeout: 30_000 });
     }
     const b = await page.evaluate(() => document.body.dataset.batch);
