@@ -698,7 +698,11 @@ fn print_table(cfg: &Config, s: &Summary, lower_bound: f64, seconds: f64, thread
             .map_or(format!("L={}", cfg.loops), |ms| format!("{ms} ms/move"));
         who += &format!(
             " {} rollout={} belief={} {budget} c={:.4} final={}",
-            cfg.variant, cfg.rollout, cfg.belief, cfg.c, cfg.final_rule
+            cfg.variant,
+            cfg.rollout,
+            cfg.belief,
+            cfg.c,
+            torus_search::mcts::final_rule(cfg)
         );
     }
     let ci =

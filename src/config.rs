@@ -10,7 +10,7 @@
 use crate::belief::Belief;
 use crate::lattice::{Torus, MAX_N, MIN_N};
 use crate::mcts::cells::DEFAULT_DECAY;
-use crate::mcts::pomcp::Scale;
+use crate::mcts::pomcp::{Scale, DEFAULT_POMCP_DEPTH};
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::preset::Preset;
@@ -86,6 +86,8 @@ pub struct Config {
     /// `pomcp`: the posterior mass left below which a return stops counting
     /// expected time exactly and samples the practice target's.
     pub pomcp_exact: f64,
+    /// pomcp: rollout steps counted before the reference tail stands in.
+    pub pomcp_depth: u32,
     /// How many recent rollout traces to keep for drawing (0 = none).
     pub keep_traces: u32,
     /// Planners: the receding horizon's depth h.
@@ -767,8 +769,8 @@ pub static PARAMS: &[Param] = &[
     Param {
         key: "pomcp_scale",
         kind: Kind::Choice(|| Scale::NAMES.to_vec()),
-        default: Value::Name(Cow::Borrowed("range")),
-        help: "pomcp: how returns are scaled for UCT: range (by the spread of returns seen this decision) or left (as a fraction of the expected steps left)",
+        default: Value::Name(Cow::Borrowed("best")),
+        help: "pomcp: a child's value for UCT and for the real move: best (the best return found through it, scaled by the spread of returns this decision), range (its mean return, scaled the same way) or left (its mean return as a fraction of the expected steps left)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Name(Cow::Borrowed(c.pomcp_scale.name())),
@@ -781,12 +783,22 @@ pub static PARAMS: &[Param] = &[
             max: 1.0,
             min_open: false,
         },
-        default: Value::Float(0.01),
-        help: "pomcp: a return counts the expected steps exactly until this share of the posterior is left, then samples the practice target's (1 = sampled only, 0 = exact to the end)",
+        default: Value::Float(0.0),
+        help: "pomcp: a return counts the expected steps exactly until this share of the posterior is left, then adds the practice target's sampled remaining steps (1 = the sampled return of plain POMCP, 0 = expected steps only)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Float(c.pomcp_exact),
         set: |c, v| c.pomcp_exact = float(v),
+    },
+    Param {
+        key: "pomcp_depth",
+        kind: Kind::Int { min: 1, max: 100_000 },
+        default: Value::Int(DEFAULT_POMCP_DEPTH as u64),
+        help: "pomcp: rollout steps counted exactly; the rest of a return is then estimated from one coverage walk to the end, made at the start of the decision",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.pomcp_depth as u64),
+        set: |c, v| c.pomcp_depth = u32_of(v),
     },
     Param {
         key: "keep_traces",
@@ -880,8 +892,9 @@ impl Default for Config {
             decay: 1.0,
             escape: 0,
             tree_nodes: 0,
-            pomcp_scale: Scale::Range,
+            pomcp_scale: Scale::Best,
             pomcp_exact: 0.0,
+            pomcp_depth: 0,
             keep_traces: 0,
             horizon: 0,
             base: Base::Cover,

@@ -379,7 +379,7 @@ impl FrameBuilder {
             None
         };
 
-        let rule = ep.config().final_rule;
+        let rule = mcts::final_rule(ep.config());
         let decision = ep.decision().map(|view| Decision {
             view,
             rule,

@@ -59,6 +59,14 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--horizon must be an integer in 1..=9, got 12",
         ),
         (
+            &["run", "--variant", "pomcp", "--pomcp-depth", "0"],
+            "--pomcp-depth must be an integer in 1..=100000, got 0",
+        ),
+        (
+            &["run", "--variant", "pomcp", "--pomcp-scale", "max"],
+            "--pomcp-scale must be one of range, left, best, got max",
+        ),
+        (
             &["run", "--searcher", "improve", "--base", "astar"],
             "--base must be one of cover, sweep, horizon, best, got astar",
         ),

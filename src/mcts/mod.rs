@@ -13,6 +13,7 @@ pub mod pomcp;
 pub mod tree;
 
 use crate::belief::BeliefState;
+use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::Sensor;
 use crate::lattice::{Move, Torus};
@@ -37,12 +38,13 @@ pub static INFO: SearcherInfo = SearcherInfo {
         // The belief MCTS always plans on the posterior with its own rollout.
         let pomcp = c.variant == Variant::Pomcp;
         match key {
-            "variant" | "ms" | "c" | "final" | "rollout_cap" | "keep_traces" => true,
+            "variant" | "ms" | "c" | "rollout_cap" | "keep_traces" => true,
+            "final" => !pomcp,
             "rollout" | "belief" => !pomcp,
             "loops" => c.ms.is_none(),
             "reset_each_move" => c.variant != Variant::Tree && !pomcp,
             "tree_nodes" => c.variant == Variant::Tree || pomcp,
-            "pomcp_scale" | "pomcp_exact" => pomcp,
+            "pomcp_scale" | "pomcp_exact" | "pomcp_depth" => pomcp,
             "decay" => c.variant == Variant::Cells,
             "escape" => true,
             "mu" => !pomcp && c.rollout == crate::searchers::PolicyKind::Levy,
@@ -63,6 +65,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
                 s.cfg.tree_nodes,
                 s.cfg.pomcp_scale,
                 s.cfg.pomcp_exact,
+                s.cfg.pomcp_depth,
             ),
             s,
         )),
@@ -245,6 +248,18 @@ pub trait Stats {
     }
 }
 
+/// The rule that picks the real move under `cfg`: the `final` parameter,
+/// except for the belief MCTS, whose returns are exact expectations of a
+/// path it can follow, so it plays the child through which the best one
+/// was found (its scaled value, the `mean` rule).
+pub fn final_rule(cfg: &Config) -> FinalRule {
+    if cfg.variant == Variant::Pomcp {
+        FinalRule::Mean
+    } else {
+        cfg.final_rule
+    }
+}
+
 /// UCT search with a variant's statistics and a rollout policy.
 pub struct Mcts<S: Stats> {
     stats: S,
@@ -280,7 +295,7 @@ impl<S: Stats> Mcts<S> {
             stats,
             policy: Policy::new(cfg.rollout, setup.torus, cfg.mu, cfg.epsilon),
             c: cfg.c,
-            final_rule: cfg.final_rule,
+            final_rule: final_rule(cfg),
             rollout_cap: cfg.rollout_cap,
             reset_each_move: cfg.reset_each_move,
             cells: setup.torus.cells(),

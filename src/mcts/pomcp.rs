@@ -35,28 +35,46 @@
 //! is the POMCP return, but its spread (≈ E[T] itself) drowns the few
 //! steps by which two moves differ. Because the coverage walk never looks
 //! at the practice target, the path is independent of it and
-//! E[τ | path] = Σₜ Rₜ: the Rao-Blackwellised return. A loop counts Rₜ
-//! exactly while more than `pomcp_exact` of the posterior is uncovered, up
-//! to the first step H where Rₜ ≤ `pomcp_exact`, and leaves the thin tail
-//! to the practice target:
+//! E[τ | path] = Σₜ Rₜ: the Rao-Blackwellised return (the expectation of
+//! the sampled one over practice targets drawn from the posterior). A loop
+//! counts Rₜ exactly while more than `pomcp_exact` of the posterior is
+//! uncovered, up to the first step H where Rₜ ≤ `pomcp_exact`, and leaves
+//! the thin tail to the practice target:
 //! G = Σ_{t<H} Rₜ + 1{τ > H}·(τ − H),
 //! which is unbiased for the path's E[T] since P(τ > t | path) = Rₜ. With
-//! `pomcp_exact = 1` it is the sampled τ; with 0 it is Σ Rₜ exactly (the
-//! rollout then runs until all mass is covered, costlier per loop).
+//! `pomcp_exact = 1` it is the sampled τ of plain POMCP; with 0 (the
+//! default) it is Σ Rₜ, the same for every practice target.
 //!
-//! **The reward scale.** UCT's exploration term is about c; the paper's 1/τ
-//! makes siblings differ by about 10⁻³ and selection near uniform. Two
-//! scales are offered (`pomcp_scale`):
-//! * `range` (default): the value of a child is (G_max − Ḡ)/(G_max −
-//!   G_min), with G_min and G_max the extremes of the returns seen through
-//!   the root. This is c scaled to the observed return range. The best
-//!   child is near 1 and the worst near 0.
-//! * `left`: the value is 1 − Ḡ/Ḡ_root, the return as a fraction of the
-//!   expected steps left. Siblings then differ by about (steps saved) ÷
-//!   (steps left), which is a few per cent when hundreds of steps remain.
+//! **The cut.** Counting Σ Rₜ to the end means rolling out until all mass
+//! is covered, hundreds of steps. A rollout is instead cut `pomcp_depth`
+//! steps past the tree, and the rest is estimated from a *reference*: one
+//! coverage walk from the root to the end, made at the start of the
+//! decision. With R of the posterior left at the cut, the loop adds what
+//! the reference still spent from its first step with at most R left,
+//! scaled to R: a rollout that covered more leaves less, and is charged
+//! less. The estimate is deterministic, so returns stay exact functions of
+//! the path.
 //!
-//! Measured at N = 40 (README, "The belief MCTS"), `range` with the
-//! Rao-Blackwellised return is the one that works; the figures are there.
+//! **The value.** UCT's exploration term is about c; the paper's 1/τ makes
+//! siblings differ by about 10⁻³ and selection near uniform. Returns are
+//! therefore scaled to [0, 1] (`pomcp_scale`):
+//! * `best` (default): (G_max − G_lo)/(G_max − G_min), with G_lo the best
+//!   return found through the child and G_min, G_max the extremes seen
+//!   through the root. Returns are expected steps of paths the searcher can
+//!   follow, so the best one found is what a child is worth (max-backup, as
+//!   in single-player MCTS); a child's mean is dragged down by the random
+//!   expansions below it.
+//! * `range`: the same with the mean return Ḡ for G_lo: c scaled to the
+//!   observed return range.
+//! * `left`: 1 − Ḡ/Ḡ_root, the return as a fraction of the expected steps
+//!   left. Siblings then differ by about (steps saved) ÷ (steps left), a few
+//!   per cent when hundreds of steps remain.
+//!
+//! The real move is the child with the best value (the `mean` final rule,
+//! whatever `final` says): under `best`, the first move of the best path
+//! found. Measured at N = 40 (README, "The belief MCTS"), `best` took the
+//! mean steps at σ = 5 from 272 (`range`, sampled tail, most visits) to
+//! about 100.
 //!
 //! The decision panel shows the chosen scale's value as each child's mean,
 //! so its UCT split is the one selection used.
@@ -75,10 +93,17 @@ named_enum! {
         Range = "range",
         /// As a fraction of the expected steps left (the root's mean return).
         Left = "left",
+        /// The best (lowest) return seen through the child, by the range.
+        Best = "best",
     }
 }
 
 const NONE: u32 = u32::MAX;
+
+/// The default `pomcp_depth`: rollout steps counted before the reference
+/// tail stands in. Chosen so that a decision of 100 loops at N = 40 stays
+/// within a few milliseconds (README, "The belief MCTS").
+pub const DEFAULT_POMCP_DEPTH: u32 = 50;
 
 /// How deep the intended line is followed, for drawing.
 const MAX_INTENT: usize = 64;
@@ -124,6 +149,11 @@ pub struct BeliefTree {
     selected: [u32; 4],
     scale: Scale,
     exact: f64,
+    /// Rollout steps counted exactly before the reference tail stands in.
+    depth: u32,
+    /// The reference completion from the root: its `R_t` and `Σ_{u>t} R_u`.
+    ref_r: Vec<f64>,
+    ref_tail: Vec<f64>,
     cov: Coverage,
     walk: CoverageWalk,
     /// Unsearched planning mass when the current returns were measured.
@@ -138,8 +168,8 @@ pub struct BeliefTree {
 impl BeliefTree {
     /// An empty tree for a lattice of `cells` cells, with at most
     /// `max_nodes` nodes, returns scaled by `scale`, counted exactly until
-    /// `exact` of the posterior is left.
-    pub fn new(cells: usize, max_nodes: u32, scale: Scale, exact: f64) -> BeliefTree {
+    /// `exact` of the posterior is left or `depth` rollout steps.
+    pub fn new(cells: usize, max_nodes: u32, scale: Scale, exact: f64, depth: u32) -> BeliefTree {
         BeliefTree {
             nodes: Vec::new(),
             scratch: Vec::new(),
@@ -149,6 +179,9 @@ impl BeliefTree {
             selected: [0; 4],
             scale,
             exact,
+            depth: depth.max(1),
+            ref_r: Vec::new(),
+            ref_tail: Vec::new(),
             cov: Coverage::new(cells),
             walk: CoverageWalk::new(),
             mass: 0.0,
@@ -170,6 +203,14 @@ impl BeliefTree {
                 let span = root.hi - root.lo;
                 if span > 0.0 {
                     (root.hi - mean) / span
+                } else {
+                    1.0
+                }
+            }
+            Scale::Best => {
+                let span = root.hi - root.lo;
+                if span > 0.0 {
+                    (root.hi - n.lo) / span
                 } else {
                     1.0
                 }
@@ -210,6 +251,50 @@ impl BeliefTree {
                 n.lo = (n.lo - 1.0) * k;
                 n.hi = (n.hi - 1.0) * k;
             }
+        }
+    }
+
+    /// Completes the search from the root with the coverage walk and keeps
+    /// its `R_t` profile: a rollout cut after `depth` steps with `R` of the
+    /// posterior left is charged what the reference still spent from the
+    /// point where it had `R` left, scaled to `R`.
+    fn reference(&mut self, env: &mut LoopEnv<'_>, mass: f64) {
+        self.ref_r.clear();
+        self.ref_tail.clear();
+        if mass <= NO_MASS {
+            return;
+        }
+        let (belief, sensor) = (env.belief, env.sensor);
+        self.cov.clear();
+        self.walk.begin_rollout();
+        let mut cell = self.nodes[0].cell;
+        let mut covered = 0.0;
+        let mut r = 1.0;
+        while r > 1e-12 && (self.ref_r.len() as u32) < env.rollout_cap {
+            let m = self
+                .walk
+                .next_move(env.torus, sensor, belief, &self.cov, env.rng, cell);
+            cell = env.torus.step(cell, m);
+            covered += self.cov.cover(sensor, belief, cell);
+            r = 1.0 - covered / mass;
+            self.ref_r.push(r.max(0.0));
+        }
+        self.cov.clear();
+        self.ref_tail.resize(self.ref_r.len(), 0.0);
+        let mut acc = 0.0;
+        for i in (0..self.ref_r.len()).rev() {
+            self.ref_tail[i] = acc;
+            acc += self.ref_r[i];
+        }
+    }
+
+    /// The reference's estimate of `Σ_{u>t} R_u` after a cut with `r` left.
+    fn tail(&self, r: f64) -> f64 {
+        // R_t only decreases along the reference: the first t with R_t ≤ r.
+        let i = self.ref_r.partition_point(|&x| x > r);
+        match self.ref_r.get(i) {
+            Some(&ri) if ri > 0.0 => self.ref_tail[i] * r / ri,
+            _ => 0.0,
         }
     }
 
@@ -302,6 +387,7 @@ impl Stats for BeliefTree {
             self.rescale = false;
             self.mass = mass;
             self.walk.begin_decision(belief);
+            self.reference(env, mass);
         }
         // R_t ≤ rho ends the exact count; a belief without planning mass
         // left counts nothing exactly.
@@ -392,14 +478,21 @@ impl Stats for BeliefTree {
 
         // The rollout.
         self.walk.begin_rollout();
+        let mut cut = false;
         while !done(exact, tau) && t - depth < env.rollout_cap {
+            if exact && t - depth >= self.depth {
+                g += self.tail(1.0 - covered / mass);
+                exact = false;
+                cut = true;
+                break;
+            }
             let m = self
                 .walk
                 .next_move(env.torus, sensor, belief, &self.cov, env.rng, cell);
             advance_to!(env.torus.step(cell, m));
         }
         let steps = t - depth;
-        if !exact {
+        if !exact && !cut {
             // The sampled tail: 1{τ > H}·(τ − H), or what a truncated
             // rollout saw of it.
             g += (tau.unwrap_or(t).max(h) - h) as f64;
@@ -484,7 +577,7 @@ mod tests {
         );
         let mut sensor = game.sensor.clone();
         belief.search_around(&sensor, game.start);
-        let mut tree = BeliefTree::new(game.torus.cells(), 1 << 12, Scale::Range, 0.01);
+        let mut tree = BeliefTree::new(game.torus.cells(), 1 << 12, Scale::Range, 0.01, 10_000);
         let mut policy =
             crate::searchers::Policy::new(crate::searchers::PolicyKind::Rw, &game.torus, 2.0, 0.2);
         let mut rng = crate::rng::stream(5, 0);
@@ -554,6 +647,96 @@ mod tests {
         );
         assert!(lo <= ((before.lo - 1.0) * k).min(report.reward) + 1e-9);
         assert!(hi >= ((before.hi - 1.0) * k).max(report.reward) - 1e-9);
+    }
+
+    #[test]
+    fn the_reference_tail_is_what_the_walk_still_spent_scaled_to_the_mass_left() {
+        let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10);
+        tree.ref_r = vec![0.8, 0.5, 0.2, 0.0];
+        tree.ref_tail = vec![0.7, 0.2, 0.0, 0.0];
+        // At most 0.5 left first at t = 1, which still spent 0.2 for 0.5.
+        assert!((tree.tail(0.5) - 0.2).abs() < 1e-15);
+        assert!((tree.tail(0.6) - 0.2 * 0.6 / 0.5).abs() < 1e-15);
+        assert_eq!(tree.tail(0.25), 0.0);
+        // More left than at the reference's first step: charged like it.
+        assert!((tree.tail(0.9) - 0.7 * 0.9 / 0.8).abs() < 1e-15);
+        assert_eq!(tree.tail(0.0), 0.0);
+        tree.ref_r.clear();
+        tree.ref_tail.clear();
+        assert_eq!(tree.tail(0.3), 0.0);
+    }
+
+    #[test]
+    fn the_real_move_is_the_child_through_which_the_best_return_was_found() {
+        // Under `best` a child's value is its best return, so the move
+        // played (the `mean` rule on the values, whatever `final` says) is
+        // the first move of the cheapest path found, not the most visited.
+        let mut c = cfg(5.0);
+        c.set("final", "visits").unwrap();
+        assert_eq!(super::super::final_rule(&c), super::super::FinalRule::Mean);
+        let game = c.game().unwrap();
+        let mut belief = crate::belief::BeliefState::new(
+            crate::belief::Belief::Posterior,
+            game.prior.clone(),
+            None,
+        );
+        let mut sensor = game.sensor.clone();
+        belief.search_around(&sensor, game.start);
+        let mut tree = BeliefTree::new(game.torus.cells(), 1 << 12, Scale::Best, 0.0, 30);
+        let mut policy =
+            crate::searchers::Policy::new(crate::searchers::PolicyKind::Rw, &game.torus, 2.0, 0.2);
+        let mut rng = crate::rng::stream(9, 0);
+        tree.begin_decision(game.start, false);
+        for _ in 0..300 {
+            let practice = belief.posterior_target(&mut rng);
+            sensor.arm(practice);
+            let mut env = LoopEnv {
+                torus: &game.torus,
+                belief: &belief,
+                sensor: &sensor,
+                mask: sensor.mask(),
+                practice,
+                policy: &mut policy,
+                rng: &mut rng,
+                rollout_cap: 10_000,
+                c: c.c,
+                trace: None,
+            };
+            tree.iterate(&mut env, game.start);
+        }
+        let view = tree.view(&game.torus, game.start, c.c);
+        let root = tree.nodes[0];
+        let lows: Vec<f64> = (0..4)
+            .map(|i| match root.children[i] {
+                NONE => f64::INFINITY,
+                k => tree.nodes[k as usize].lo,
+            })
+            .collect();
+        let cheapest = (0..4).min_by(|&a, &b| lows[a].total_cmp(&lows[b])).unwrap();
+        assert_eq!(
+            lows[cheapest], root.lo,
+            "the root's best return is a child's"
+        );
+        for (i, ch) in view
+            .children
+            .iter()
+            .enumerate()
+            .filter(|(_, ch)| ch.visits > 0)
+        {
+            let want = (root.hi - lows[i]) / (root.hi - root.lo);
+            assert!(
+                (ch.mean - want).abs() < 1e-12,
+                "child {i}: {} vs {want}",
+                ch.mean
+            );
+        }
+        let m = super::super::final_move(&view, super::super::FinalRule::Mean, &mut rng);
+        assert_eq!(m as usize, cheapest);
+        let most = (0..4).max_by_key(|&i| view.children[i].visits).unwrap();
+        assert_ne!(
+            most, cheapest,
+            "this seed separates the visits from the best return"
+        );
     }
 
     #[test]
