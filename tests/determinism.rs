@@ -190,7 +190,7 @@ const PINNED: [u64; 16] = [
     0xec1f7e9f227ae3a8,
     0x2f8ace8c33995f53,
     0x525ec88472ced1ec,
-    0x311f3cbcad960a3e,
+    0x98caf1cf6f15d131,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

@@ -103,7 +103,7 @@ const NONE: u32 = u32::MAX;
 /// The default `pomcp_depth`: rollout steps counted before the reference
 /// tail stands in. Chosen so that a decision of 100 loops at N = 40 stays
 /// within a few milliseconds (README, "The belief MCTS").
-pub const DEFAULT_POMCP_DEPTH: u32 = 50;
+pub const DEFAULT_POMCP_DEPTH: u32 = 25;
 
 /// How deep the intended line is followed, for drawing.
 const MAX_INTENT: usize = 64;
