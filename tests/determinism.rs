@@ -157,6 +157,16 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            // Rollouts cut after 3 steps, finished by the reference walk.
+            "pomcp cut",
+            Config {
+                variant: Variant::Pomcp,
+                pomcp_depth: 3,
+                prior: PriorKind::Uniform,
+                ..small()
+            },
+        ),
     ]
 }
 
@@ -173,8 +183,9 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// issue 11); the others set decay 1 and escape 0, the paper's MCTS, and
 /// keep their values. The `pomcp` case was re-pinned when the belief MCTS
 /// took its value from the best return found, cut its rollouts with a
-/// reference tail and played the best child (still issue 11).
-const PINNED: [u64; 16] = [
+/// reference tail and played the best child (still issue 11); `pomcp cut`
+/// pins the cut, which the small lattice of the other case never reaches.
+const PINNED: [u64; 17] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -191,6 +202,7 @@ const PINNED: [u64; 16] = [
     0x2f8ace8c33995f53,
     0x525ec88472ced1ec,
     0x98caf1cf6f15d131,
+    0x5a568ac79c3787d6,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

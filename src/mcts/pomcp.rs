@@ -105,6 +105,10 @@ const NONE: u32 = u32::MAX;
 /// within a few milliseconds (README, "The belief MCTS").
 pub const DEFAULT_POMCP_DEPTH: u32 = 25;
 
+/// A rollout is cut only once it has covered this share of the posterior
+/// mass the tree path left.
+const CUT_SHARE: f64 = 0.05;
+
 /// How deep the intended line is followed, for drawing.
 const MAX_INTENT: usize = 64;
 
@@ -476,11 +480,15 @@ impl Stats for BeliefTree {
         }
         let depth = t;
 
-        // The rollout.
+        // The rollout. It may be cut once it has covered CUT_SHARE of what
+        // the tree left: before that, every rollout would be charged the
+        // same reference tail, and the returns would not tell moves apart
+        // (all of them, with a delta prior far away).
         self.walk.begin_rollout();
         let mut cut = false;
+        let cut_below = 1.0 - (1.0 - CUT_SHARE) * (1.0 - covered / mass);
         while !done(exact, tau) && t - depth < env.rollout_cap {
-            if exact && t - depth >= self.depth {
+            if exact && t - depth >= self.depth && covered / mass >= cut_below {
                 g += self.tail(1.0 - covered / mass);
                 exact = false;
                 cut = true;
