@@ -582,7 +582,7 @@ pub static PARAMS: &[Param] = &[
         key: "variant",
         kind: Kind::Choice(|| Variant::NAMES.to_vec()),
         default: Value::Name(Cow::Borrowed("cells")),
-        help: "MCTS statistics: cells (the paper's per-cell table), tree (a search tree with subtree reuse) or code (the authors' MATLAB statistics, for the paper-code preset)",
+        help: "MCTS statistics: cells (the paper's per-cell table), tree (a search tree with subtree reuse), code (the authors' MATLAB statistics, for the paper-code preset) or pomcp (a belief MCTS on the posterior, beyond the paper)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Name(Cow::Borrowed(c.variant.name())),
