@@ -573,45 +573,81 @@ mod tests {
         ep
     }
 
+    /// A searcher's world built by hand, to drive a tree through the Stats
+    /// interface: the belief after searching the start, and the streams.
+    struct Hand {
+        c: Config,
+        game: crate::config::Game,
+        belief: crate::belief::BeliefState,
+        sensor: crate::lattice::Sensor,
+        policy: crate::searchers::Policy,
+        rng: crate::rng::Rng,
+    }
+
+    impl Hand {
+        fn new(c: Config, seed: u64) -> Hand {
+            let game = c.game().unwrap();
+            let mut belief = crate::belief::BeliefState::new(
+                crate::belief::Belief::Posterior,
+                game.prior.clone(),
+                None,
+            );
+            let sensor = game.sensor.clone();
+            belief.search_around(&sensor, game.start);
+            let policy = crate::searchers::Policy::new(
+                crate::searchers::PolicyKind::Rw,
+                &game.torus,
+                2.0,
+                0.2,
+            );
+            Hand {
+                c,
+                game,
+                belief,
+                sensor,
+                policy,
+                rng: crate::rng::stream(seed, 0),
+            }
+        }
+
+        /// Runs `loops` loops of `tree` from `root`; returns the last report.
+        fn run(&mut self, tree: &mut BeliefTree, root: u32, loops: u32) -> LoopReport {
+            let mut report = None;
+            for _ in 0..loops {
+                let practice = self.belief.posterior_target(&mut self.rng);
+                self.sensor.arm(practice);
+                let mut env = LoopEnv {
+                    torus: &self.game.torus,
+                    belief: &self.belief,
+                    sensor: &self.sensor,
+                    mask: self.sensor.mask(),
+                    practice,
+                    policy: &mut self.policy,
+                    rng: &mut self.rng,
+                    rollout_cap: 10_000,
+                    c: self.c.c,
+                    trace: None,
+                };
+                report = Some(tree.iterate(&mut env, root));
+            }
+            report.expect("at least one loop")
+        }
+    }
+
     #[test]
     fn the_kept_subtree_survives_a_real_move_rescaled() {
         // Unit-level: build a tree by hand through the Stats interface.
-        let c = cfg(5.0);
-        let game = c.game().unwrap();
-        let mut belief = crate::belief::BeliefState::new(
-            crate::belief::Belief::Posterior,
-            game.prior.clone(),
-            None,
-        );
-        let mut sensor = game.sensor.clone();
-        belief.search_around(&sensor, game.start);
-        let mut tree = BeliefTree::new(game.torus.cells(), 1 << 12, Scale::Range, 0.01, 10_000);
-        let mut policy =
-            crate::searchers::Policy::new(crate::searchers::PolicyKind::Rw, &game.torus, 2.0, 0.2);
-        let mut rng = crate::rng::stream(5, 0);
-        tree.begin_decision(game.start, false);
-        for _ in 0..200 {
-            let practice = belief.posterior_target(&mut rng);
-            sensor.arm(practice);
-            let mut env = LoopEnv {
-                torus: &game.torus,
-                belief: &belief,
-                sensor: &sensor,
-                mask: sensor.mask(),
-                practice,
-                policy: &mut policy,
-                rng: &mut rng,
-                rollout_cap: 10_000,
-                c: c.c,
-                trace: None,
-            };
-            tree.iterate(&mut env, game.start);
-        }
+        let mut hand = Hand::new(cfg(5.0), 5);
+        let start = hand.game.start;
+        let cells = hand.game.torus.cells();
+        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Range, 0.01, 10_000);
+        tree.begin_decision(start, false);
+        hand.run(&mut tree, start, 200);
         let m = Move::Right;
         let kid = tree.nodes[0].children[m as usize];
         let before = tree.nodes[kid as usize];
         assert!(before.visits > 10);
-        let old_mass = belief.remaining();
+        let old_mass = hand.belief.remaining();
         tree.advance(m);
         // The child is the root now, with its visits and its returns.
         assert_eq!(tree.nodes[0].visits, before.visits);
@@ -626,28 +662,14 @@ mod tests {
                 .map(|&k| tree.nodes[k as usize].cell)
                 .as_ref()
         );
-        let to = game.torus.step(game.start, m);
-        belief.search_around(&sensor, to);
+        let to = hand.game.torus.step(start, m);
+        hand.belief.search_around(&hand.sensor, to);
         tree.begin_decision(to, false);
-        let practice = belief.posterior_target(&mut rng);
-        sensor.arm(practice);
-        let mut env = LoopEnv {
-            torus: &game.torus,
-            belief: &belief,
-            sensor: &sensor,
-            mask: sensor.mask(),
-            practice,
-            policy: &mut policy,
-            rng: &mut rng,
-            rollout_cap: 10_000,
-            c: c.c,
-            trace: None,
-        };
-        let report = tree.iterate(&mut env, to);
+        let report = hand.run(&mut tree, to, 1);
         // One more loop, and the kept returns mapped by G -> (G - 1)·M/M'.
         let (visits, mean, lo, hi) = tree.root_stats();
         assert_eq!(visits, before.visits + 1);
-        let k = old_mass / belief.remaining();
+        let k = old_mass / hand.belief.remaining();
         let want = ((before.sum - before.visits as f64) * k + report.reward) / visits as f64;
         assert!(
             (mean - want).abs() < 1e-9 * want.abs().max(1.0),
@@ -682,37 +704,12 @@ mod tests {
         let mut c = cfg(5.0);
         c.set("final", "visits").unwrap();
         assert_eq!(super::super::final_rule(&c), super::super::FinalRule::Mean);
-        let game = c.game().unwrap();
-        let mut belief = crate::belief::BeliefState::new(
-            crate::belief::Belief::Posterior,
-            game.prior.clone(),
-            None,
-        );
-        let mut sensor = game.sensor.clone();
-        belief.search_around(&sensor, game.start);
-        let mut tree = BeliefTree::new(game.torus.cells(), 1 << 12, Scale::Best, 0.0, 30);
-        let mut policy =
-            crate::searchers::Policy::new(crate::searchers::PolicyKind::Rw, &game.torus, 2.0, 0.2);
-        let mut rng = crate::rng::stream(9, 0);
-        tree.begin_decision(game.start, false);
-        for _ in 0..300 {
-            let practice = belief.posterior_target(&mut rng);
-            sensor.arm(practice);
-            let mut env = LoopEnv {
-                torus: &game.torus,
-                belief: &belief,
-                sensor: &sensor,
-                mask: sensor.mask(),
-                practice,
-                policy: &mut policy,
-                rng: &mut rng,
-                rollout_cap: 10_000,
-                c: c.c,
-                trace: None,
-            };
-            tree.iterate(&mut env, game.start);
-        }
-        let view = tree.view(&game.torus, game.start, c.c);
+        let mut hand = Hand::new(c, 9);
+        let (start, cells) = (hand.game.start, hand.game.torus.cells());
+        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Best, 0.0, 30);
+        tree.begin_decision(start, false);
+        hand.run(&mut tree, start, 300);
+        let view = tree.view(&hand.game.torus, start, hand.c.c);
         let root = tree.nodes[0];
         let lows: Vec<f64> = (0..4)
             .map(|i| match root.children[i] {
@@ -738,7 +735,7 @@ mod tests {
                 ch.mean
             );
         }
-        let m = super::super::final_move(&view, super::super::FinalRule::Mean, &mut rng);
+        let m = super::super::final_move(&view, super::super::FinalRule::Mean, &mut hand.rng);
         assert_eq!(m as usize, cheapest);
         let most = (0..4).max_by_key(|&i| view.children[i].visits).unwrap();
         assert_ne!(
