@@ -47,7 +47,9 @@
 //!
 //! **The cut.** Counting Σ Rₜ to the end means rolling out until all mass
 //! is covered, hundreds of steps. A rollout is instead cut `pomcp_depth`
-//! steps past the tree, and the rest is estimated from a *reference*: one
+//! steps past the tree, once it has covered 5% of the mass the tree path
+//! left (before that every cut rollout would be charged alike), and the
+//! rest is estimated from a *reference*: one
 //! coverage walk from the root to the end, made at the start of the
 //! decision. With R of the posterior left at the cut, the loop adds what
 //! the reference still spent from its first step with at most R left,
@@ -72,9 +74,10 @@
 //!
 //! The real move is the child with the best value (the `mean` final rule,
 //! whatever `final` says): under `best`, the first move of the best path
-//! found. Measured at N = 40 (README, "The belief MCTS"), `best` took the
-//! mean steps at σ = 5 from 272 (`range`, sampled tail, most visits) to
-//! about 100.
+//! found. Measured at N = 40 (README, "The belief MCTS"), these rules took
+//! the mean steps at σ = 5 from 272 (`range`, a sampled tail, the most
+//! visited child, no cut) to 108, and the cost of a decision of 100 loops
+//! from about 30 ms to about 2 ms.
 //!
 //! The decision panel shows the chosen scale's value as each child's mean,
 //! so its UCT split is the one selection used.
