@@ -529,6 +529,19 @@ test('no request leaves the origin, and the CSP is set', { timeout: 120_000 }, a
   });
 });
 
+/**
+ * After the engine trapped: the board still shows the last frame, and
+ * Restart gets a fresh worker (the trapped instance is dropped) that
+ * searches again.
+ */
+async function restartsAfterTrap(page) {
+  assert.equal(await canvasIsBlank(page, '#view-0'), false);
+  await expectText(page, '#play', 'Restart');
+  await page.click('#play');
+  assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
+  await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
+}
+
 test('a wasm panic shows a readable message and sets state error', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0&n=12', async (page, report) => {
     // The panic happens in the search worker's wasm instance, as a real one would.
@@ -536,12 +549,7 @@ test('a wasm panic shows a readable message and sets state error', { timeout: 12
     await waitState(page, 'error', 30_000);
     assert.match(await text(page, '#message'), /wasm panic.*panicForTest: deliberate test panic/);
     assert.ok(report.consoleErrors.some((e) => e.includes('deliberate test panic')), 'the panic hook logs it');
-    assert.equal(await canvasIsBlank(page, '#view-0'), false);
-    // Restart gets a fresh worker (the trapped instance is dropped) and searches again.
-    await expectText(page, '#play', 'Restart');
-    await page.click('#play');
-    assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
-    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
+    await restartsAfterTrap(page);
   }, { allowErrors: true });
 });
 
@@ -554,11 +562,7 @@ test('running out of wasm memory in the search worker shows a readable message, 
     const msg = await text(page, '#message');
     assert.match(msg, /ran out of memory: it could not allocate \d+ MiB more, with \d+ MiB of WebAssembly memory in use/);
     assert.doesNotMatch(msg, /unreachable/);
-    assert.equal(await canvasIsBlank(page, '#view-0'), false);
-    await expectText(page, '#play', 'Restart');
-    await page.click('#play');
-    assert.match(await waitState(page, ['running', 'found'], 30_000), /running|found/);
-    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) > 0, null, { timeout: 30_000 });
+    await restartsAfterTrap(page);
     assert.deepEqual(report.consoleErrors.filter((e) => e.startsWith('uncaught')), [], 'nothing escapes uncaught');
   }, { allowErrors: true });
 });
