@@ -10,7 +10,7 @@
 use crate::belief::Belief;
 use crate::lattice::{Torus, MAX_N, MIN_N};
 use crate::mcts::cells::DEFAULT_DECAY;
-use crate::mcts::pomcp::{Scale, DEFAULT_POMCP_DEPTH};
+use crate::mcts::pomcp::{Scale, DEFAULT_POMCP_DEPTH, DEFAULT_POMCP_PLAN};
 use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
 use crate::mcts::{FinalRule, Variant};
 use crate::preset::Preset;
@@ -88,6 +88,8 @@ pub struct Config {
     pub pomcp_exact: f64,
     /// pomcp: rollout steps counted before the reference tail stands in.
     pub pomcp_depth: u32,
+    /// pomcp: the horizon depth of its first plan (0: no plan).
+    pub pomcp_plan: u32,
     /// How many recent rollout traces to keep for drawing (0 = none).
     pub keep_traces: u32,
     /// Planners: the receding horizon's depth h.
@@ -801,6 +803,19 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.pomcp_depth = u32_of(v),
     },
     Param {
+        key: "pomcp_plan",
+        kind: Kind::Int {
+            min: 0,
+            max: searchers::MAX_HORIZON as u64,
+        },
+        default: Value::Int(DEFAULT_POMCP_PLAN as u64),
+        help: "pomcp: the horizon depth of the plan it starts from (rollouts rejoin the plan, and a move leaves it only for a line checked exactly to be cheaper); 0 = no plan, coverage-walk rollouts",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.pomcp_plan as u64),
+        set: |c, v| c.pomcp_plan = u32_of(v),
+    },
+    Param {
         key: "keep_traces",
         kind: Kind::Int { min: 0, max: 64 },
         default: Value::Int(0),
@@ -895,6 +910,7 @@ impl Default for Config {
             pomcp_scale: Scale::Best,
             pomcp_exact: 0.0,
             pomcp_depth: 0,
+            pomcp_plan: 0,
             keep_traces: 0,
             horizon: 0,
             base: Base::Cover,

@@ -199,7 +199,17 @@ impl Episode {
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field.
     pub fn blind(cfg: &Config) -> Result<Episode, ConfigError> {
-        let mut ep = Episode::trial(cfg, 0)?;
+        Episode::blind_trial(cfg, 0)
+    }
+
+    /// Trial `i` of `cfg` with detection switched off (see [`Episode::blind`]):
+    /// for a searcher that draws random numbers, the path trial `i` follows
+    /// up to its detection.
+    ///
+    /// # Errors
+    /// A [`ConfigError`] naming the first invalid field.
+    pub fn blind_trial(cfg: &Config, i: u64) -> Result<Episode, ConfigError> {
+        let mut ep = Episode::trial(cfg, i)?;
         ep.blind = true;
         ep.status = Status::Running;
         Ok(ep)

@@ -91,7 +91,7 @@ pub struct Exact {
 /// numbers, [`ExactError::Known`] with `known`, [`ExactError::Config`] for
 /// an invalid configuration.
 pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
-    let game = cfg.game()?;
+    cfg.validate()?;
     if !searchers::deterministic(cfg) {
         return Err(ExactError::NotDeterministic {
             searcher: cfg.searcher.name(),
@@ -100,6 +100,21 @@ pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
     if cfg.known {
         return Err(ExactError::Known);
     }
+    Ok(blind_mean(cfg, 0)?)
+}
+
+/// The exact mean of trial `i`'s blind path: `Σ_{t<cap} R_t` along the
+/// path the searcher of `cfg` follows in trial `i` until it detects the
+/// target. For a searcher that draws random numbers (from its own stream,
+/// never the target's) this is `E[min(T, cap)]` given trial `i`'s draws,
+/// so its mean over trials estimates the searcher's mean with the
+/// target's share of the noise removed (Rao-Blackwellised). Ignores
+/// `known`.
+///
+/// # Errors
+/// The [`ConfigError`] of an invalid configuration.
+pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ConfigError> {
+    let game = cfg.game()?;
     let mass = game.prior.mass();
     let mut covered = vec![false; game.torus.cells()];
     let mut left = mass.iter().filter(|&&m| m > 0.0).count();
@@ -111,7 +126,7 @@ pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
             }
         }
     };
-    let mut ep = Episode::blind(cfg)?;
+    let mut ep = Episode::blind_trial(cfg, i)?;
     cover(ep.position(), &mut left);
     // Σ_{t<cap} R_t reads positions 0..cap−1: at most cap − 1 moves.
     while left > 0 && ep.steps() + 1 < cfg.step_cap {

@@ -63,6 +63,10 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--pomcp-depth must be an integer in 1..=100000, got 0",
         ),
         (
+            &["run", "--variant", "pomcp", "--pomcp-plan", "10"],
+            "--pomcp-plan must be an integer in 0..=9, got 10",
+        ),
+        (
             &["run", "--variant", "pomcp", "--pomcp-scale", "max"],
             "--pomcp-scale must be one of range, left, best, got max",
         ),

@@ -158,8 +158,20 @@ fn cases() -> Vec<(&'static str, Config)> {
             },
         ),
         (
-            // Rollouts cut after 3 steps, finished by the reference walk.
+            // Rollouts cut after 3 steps, finished by the reference walk;
+            // no plan: coverage-walk rollouts and reference.
             "pomcp cut",
+            Config {
+                variant: Variant::Pomcp,
+                pomcp_depth: 3,
+                pomcp_plan: 0,
+                prior: PriorKind::Uniform,
+                ..small()
+            },
+        ),
+        (
+            // The plan's rollouts rejoin it, cut after 3 steps.
+            "pomcp plan cut",
             Config {
                 variant: Variant::Pomcp,
                 pomcp_depth: 3,
@@ -185,7 +197,10 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// took its value from the best return found, cut its rollouts with a
 /// reference tail and played the best child (still issue 11); `pomcp cut`
 /// pins the cut, which the small lattice of the other case never reaches.
-const PINNED: [u64; 17] = [
+/// When the belief MCTS started from a plan (`pomcp_plan`, issue 11) the
+/// `pomcp` case was re-pinned; `pomcp cut` sets `pomcp_plan` 0 and keeps
+/// its value, and `pomcp plan cut` pins the plan with the cut.
+const PINNED: [u64; 18] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -201,8 +216,9 @@ const PINNED: [u64; 17] = [
     0xec1f7e9f227ae3a8,
     0x2f8ace8c33995f53,
     0x525ec88472ced1ec,
-    0x98caf1cf6f15d131,
+    0xe66447472545f040,
     0x5a568ac79c3787d6,
+    0x242d9878f2a7c99f,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

@@ -472,6 +472,7 @@ mod tests {
                 "pomcp_scale" => (r#""variant":"pomcp""#, "left".into()),
                 "pomcp_exact" => (r#""variant":"pomcp""#, "0.5".into()),
                 "pomcp_depth" => (r#""variant":"pomcp""#, "20".into()),
+                "pomcp_plan" => (r#""variant":"pomcp""#, "3".into()),
                 "paint" => (r#""prior":"paint""#, paint.clone()),
                 "sigma" | "known" | "prior" => (r#""searcher":"mcts""#, p.default.text()),
                 "target" => (r#""searcher":"mcts""#, "2,2".into()),

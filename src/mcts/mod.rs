@@ -9,6 +9,7 @@
 pub mod cells;
 pub mod code;
 pub mod coverage_walk;
+pub mod plan_walk;
 pub mod pomcp;
 pub mod tree;
 
@@ -44,7 +45,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
             "loops" => c.ms.is_none(),
             "reset_each_move" => c.variant != Variant::Tree && !pomcp,
             "tree_nodes" => c.variant == Variant::Tree || pomcp,
-            "pomcp_scale" | "pomcp_exact" | "pomcp_depth" => pomcp,
+            "pomcp_scale" | "pomcp_exact" | "pomcp_depth" | "pomcp_plan" => pomcp,
             "decay" => c.variant == Variant::Cells,
             "escape" => true,
             "mu" => !pomcp && c.rollout == crate::searchers::PolicyKind::Levy,
@@ -66,6 +67,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
                 s.cfg.pomcp_scale,
                 s.cfg.pomcp_exact,
                 s.cfg.pomcp_depth,
+                s.cfg.pomcp_plan,
             ),
             s,
         )),
@@ -246,6 +248,17 @@ pub trait Stats {
     fn intent(&self) -> &[u32] {
         &[]
     }
+    /// Ends a decision with the statistics' own choice of move, or `None`
+    /// to leave it to the final rule (`cap`: the rollout step cap).
+    fn conclude(
+        &mut self,
+        _torus: &Torus,
+        _sensor: &Sensor,
+        _belief: &BeliefState,
+        _cap: u32,
+    ) -> Option<Move> {
+        None
+    }
 }
 
 /// The rule that picks the real move under `cfg`: the `final` parameter,
@@ -372,8 +385,17 @@ impl<S: Stats> Searcher for Mcts<S> {
         if !w.budget.spent() {
             return None;
         }
-        let view = self.stats.view(w.torus, w.pos, self.c);
-        let m = final_move(&view, self.final_rule, w.rng);
+        let m = match self
+            .stats
+            .conclude(w.torus, w.sensor, w.belief, self.rollout_cap)
+        {
+            Some(m) => m,
+            None => final_move(
+                &self.stats.view(w.torus, w.pos, self.c),
+                self.final_rule,
+                w.rng,
+            ),
+        };
         self.stats.advance(m);
         w.budget.close();
         Some(m)

@@ -16,14 +16,17 @@
 //! 2. descends a search tree of move sequences from the searcher's cell by
 //!    UCT, expanding one new node (a random untried move), covering each
 //!    cell's disc in a simulated [`Coverage`];
-//! 3. rolls out with the [`CoverageWalk`], a cheap belief policy (to the
-//!    neighbour whose disc adds the most uncovered planning mass, else
-//!    toward the best mass ÷ (distance + 1)), not a blind walk;
+//! 3. rolls out with the [`PlanWalk`], which rejoins the searcher's plan
+//!    (below) where it still adds mass; with no plan (`pomcp_plan` 0),
+//!    with the [`CoverageWalk`], a cheap belief policy (to the neighbour
+//!    whose disc adds the most uncovered planning mass, else toward the
+//!    best mass ÷ (distance + 1)); never a blind walk;
 //! 4. backpropagates the loop's return G (below) to every node on its tree
 //!    path.
 //!
-//! The real move is chosen by the `final` rule from the root's children; the
-//! child reached is kept as the next root with its subtree (**tree reuse**).
+//! The real move is the plan's first move (below; with no plan, the child
+//! with the best value); the child reached is kept as the next root with
+//! its subtree (**tree reuse**).
 //! The belief then changes (the new disc is searched and the posterior is
 //! renormalised), which rescales every kept return by an exact affine map:
 //! a return G measured from the old root becomes (G − 1)·M/M′ from the
@@ -45,13 +48,34 @@
 //! `pomcp_exact = 1` it is the sampled τ of plain POMCP; with 0 (the
 //! default) it is Σ Rₜ, the same for every practice target.
 //!
+//! **The plan.** The searcher holds a plan: a path that completes the
+//! search. The first is the receding-horizon planner's of depth
+//! `pomcp_plan` (`crate::searchers::completion`), made at the first
+//! decision and again whenever a real move leaves the plan. Each decision
+//! 1. follows the plan from the root with the plan walk and counts its
+//!    return exactly (this is the reference below, and becomes the plan);
+//! 2. runs its first loop along the plan, uncut, so the plan's child holds
+//!    the plan's return;
+//! 3. after the loops, checks the best line below each child whose best
+//!    return beats the plan's: the line, then the plan walk to the end,
+//!    counted exactly (cut returns are estimates). The cheapest checked
+//!    path becomes the plan, and the move is its first.
+//!
+//! So the tree proposes where to leave the plan and only a line that is
+//! exactly cheaper is taken: the searcher's path is never worse than the
+//! first plan's (the plan walk only skips stretches that cover nothing new,
+//! so it reaches every later cell of the plan no later), and the tree's
+//! finds are what it gains (README, "The belief MCTS"). A checked child's
+//! best return becomes its exact one, so the value the decision panel
+//! shows leads with the move played.
+//!
 //! **The cut.** Counting Σ Rₜ to the end means rolling out until all mass
 //! is covered, hundreds of steps. A rollout is instead cut `pomcp_depth`
 //! steps past the tree, once it has covered 5% of the mass the tree path
 //! left (before that every cut rollout would be charged alike), and the
-//! rest is estimated from a *reference*: one
-//! coverage walk from the root to the end, made at the start of the
-//! decision. With R of the posterior left at the cut, the loop adds what
+//! rest is estimated from a *reference*: the plan followed from the root
+//! (with no plan, one coverage walk from the root to the end), made at the
+//! start of the decision. With R of the posterior left at the cut, the loop adds what
 //! the reference still spent from its first step with at most R left,
 //! scaled to R: a rollout that covered more leaves less, and is charged
 //! less. The estimate is deterministic, so returns stay exact functions of
@@ -72,22 +96,25 @@
 //!   left. Siblings then differ by about (steps saved) ÷ (steps left), a few
 //!   per cent when hundreds of steps remain.
 //!
-//! The real move is the child with the best value (the `mean` final rule,
-//! whatever `final` says): under `best`, the first move of the best path
-//! found. Measured at N = 40 (README, "The belief MCTS"), these rules took
-//! the mean steps at σ = 5 from 272 (`range`, a sampled tail, the most
-//! visited child, no cut) to 108, and the cost of a decision of 100 loops
-//! from about 30 ms to about 2 ms.
+//! With no plan the real move is the child with the best value (the `mean`
+//! final rule, whatever `final` says): under `best`, the first move of the
+//! best path found. Measured at N = 40 (README, "The belief MCTS"), these
+//! rules took the mean steps at σ = 5 from 272 (`range`, a sampled tail,
+//! the most visited child, no cut) to 108, and the cost of a decision of
+//! 100 loops from about 30 ms to about 2 ms; the plan took them to 96.
 //!
 //! The decision panel shows the chosen scale's value as each child's mean,
 //! so its UCT split is the one selection used.
 
 use super::coverage_walk::CoverageWalk;
+use super::plan_walk::PlanWalk;
 use super::{argmax_random, ChildStat, DecisionView, LoopEnv, LoopReport, Stats};
+use crate::belief::BeliefState;
 use crate::coverage::Coverage;
-use crate::lattice::{Move, Torus};
+use crate::lattice::{Move, Sensor, Torus};
 use crate::named::named_enum;
 use crate::rng;
+use crate::searchers::{completion, Lookahead};
 
 named_enum! {
     /// How the belief MCTS scales returns for UCT.
@@ -107,6 +134,11 @@ const NONE: u32 = u32::MAX;
 /// tail stands in. Chosen so that a decision of 100 loops at N = 40 stays
 /// within a few milliseconds (README, "The belief MCTS").
 pub const DEFAULT_POMCP_DEPTH: u32 = 25;
+
+/// The default `pomcp_plan`: the horizon depth of the first plan. Depth 5
+/// completes a search at N = 40 in about 17 ms, once a trial (README, "The
+/// belief MCTS").
+pub const DEFAULT_POMCP_PLAN: u32 = 5;
 
 /// A rollout is cut only once it has covered this share of the posterior
 /// mass the tree path left.
@@ -170,13 +202,86 @@ pub struct BeliefTree {
     /// True until the decision's first loop has run.
     fresh: bool,
     intent: Vec<u32>,
+    /// The first plan's horizon depth (0: no plan, the coverage walk).
+    plan_depth: u32,
+    look: Lookahead,
+    /// The plan from `plan_at` on: the cells after the root, completing the search.
+    plan: Vec<u32>,
+    plan_at: usize,
+    /// The plan's exact return from the root.
+    plan_cost: f64,
+    /// Scratch for completions, and the best verified one.
+    cand: Vec<u32>,
+    best_cells: Vec<u32>,
+    pwalk: PlanWalk,
+    /// The decision's next loop replays the plan.
+    replay: bool,
+    /// The move [`Stats::conclude`] chose, which keeps the plan valid.
+    planned: Option<Move>,
+}
+
+/// Follows `prefix` from `root` (each cell next to the one before), then
+/// the plan walk over `plan` until every unsearched cell with planning
+/// mass is covered or `cap` moves; writes the cells into `out` and their
+/// `R_t` into `rs` (if given) and returns the exact return
+/// `1 + Σ_{t≥1} R_t` of that path from the root.
+#[allow(clippy::too_many_arguments)]
+fn follow_plan(
+    torus: &Torus,
+    sensor: &Sensor,
+    belief: &BeliefState,
+    mass: f64,
+    cap: u32,
+    cov: &mut Coverage,
+    plan: &[u32],
+    root: u32,
+    prefix: &[u32],
+    out: &mut Vec<u32>,
+    mut rs: Option<&mut Vec<f64>>,
+) -> f64 {
+    cov.clear();
+    out.clear();
+    if let Some(rs) = rs.as_deref_mut() {
+        rs.clear();
+    }
+    let mut walk = PlanWalk::new();
+    let (mut g, mut covered, mut r, mut cell) = (1.0, 0.0, 1.0, root);
+    let mut i = 0;
+    while r > 1e-12 && (out.len() as u32) < cap {
+        let next = match prefix.get(i) {
+            Some(&c) => c,
+            None => match walk.next_move(torus, sensor, belief, cov, plan, cell) {
+                Some(m) => torus.step(cell, m),
+                None => break,
+            },
+        };
+        i += 1;
+        cell = next;
+        covered += cov.cover(sensor, belief, cell);
+        r = (1.0 - covered / mass).max(0.0);
+        g += r;
+        out.push(cell);
+        if let Some(rs) = rs.as_deref_mut() {
+            rs.push(r);
+        }
+    }
+    cov.clear();
+    g
 }
 
 impl BeliefTree {
     /// An empty tree for a lattice of `cells` cells, with at most
     /// `max_nodes` nodes, returns scaled by `scale`, counted exactly until
-    /// `exact` of the posterior is left or `depth` rollout steps.
-    pub fn new(cells: usize, max_nodes: u32, scale: Scale, exact: f64, depth: u32) -> BeliefTree {
+    /// `exact` of the posterior is left or `depth` rollout steps, and a
+    /// first plan by the horizon rule of depth `plan_depth` (0: no plan).
+    pub fn new(
+        cells: usize,
+        max_nodes: u32,
+        scale: Scale,
+        exact: f64,
+        depth: u32,
+        plan_depth: u32,
+    ) -> BeliefTree {
         BeliefTree {
             nodes: Vec::new(),
             scratch: Vec::new(),
@@ -195,7 +300,22 @@ impl BeliefTree {
             rescale: false,
             fresh: true,
             intent: Vec::new(),
+            plan_depth,
+            look: Lookahead::new(plan_depth.max(1)),
+            plan: Vec::new(),
+            plan_at: 0,
+            plan_cost: f64::INFINITY,
+            cand: Vec::new(),
+            best_cells: Vec::new(),
+            pwalk: PlanWalk::new(),
+            replay: false,
+            planned: None,
         }
+    }
+
+    /// True while the searcher holds a plan (rollouts follow it).
+    fn planning(&self) -> bool {
+        self.plan_depth > 0 && self.plan_at < self.plan.len()
     }
 
     /// The value of a node's mean return under the scale, higher is better.
@@ -272,6 +392,13 @@ impl BeliefTree {
             return;
         }
         let (belief, sensor) = (env.belief, env.sensor);
+        if self.plan_depth > 0 {
+            self.plan_reference(env, mass);
+            if self.planning() {
+                self.tails();
+                return;
+            }
+        }
         self.cov.clear();
         self.walk.begin_rollout();
         let mut cell = self.nodes[0].cell;
@@ -287,11 +414,81 @@ impl BeliefTree {
             self.ref_r.push(r.max(0.0));
         }
         self.cov.clear();
+        self.tails();
+    }
+
+    /// `ref_tail` from `ref_r`.
+    fn tails(&mut self) {
+        self.ref_tail.clear();
         self.ref_tail.resize(self.ref_r.len(), 0.0);
         let mut acc = 0.0;
         for i in (0..self.ref_r.len()).rev() {
             self.ref_tail[i] = acc;
             acc += self.ref_r[i];
+        }
+    }
+
+    /// Makes the plan the reference: rebuilds it by the horizon rule when
+    /// the last real move left it (or there is none yet), then follows it
+    /// from the root with the plan walk, which becomes the plan, and keeps
+    /// its `R_t` and exact return.
+    fn plan_reference(&mut self, env: &mut LoopEnv<'_>, mass: f64) {
+        let root = self.nodes[0].cell;
+        let (torus, sensor, belief) = (env.torus, env.sensor, env.belief);
+        let valid = self.plan_at < self.plan.len() && torus.l1(root, self.plan[self.plan_at]) == 1;
+        if !valid {
+            self.cov.clear();
+            let cap = env.rollout_cap as usize;
+            completion(
+                &mut self.look,
+                torus,
+                sensor,
+                belief,
+                &mut self.cov,
+                root,
+                None,
+                cap,
+                &mut self.plan,
+            );
+            self.plan_at = 0;
+        }
+        self.plan_cost = follow_plan(
+            torus,
+            sensor,
+            belief,
+            mass,
+            env.rollout_cap,
+            &mut self.cov,
+            &self.plan[self.plan_at..],
+            root,
+            &[],
+            &mut self.cand,
+            Some(&mut self.ref_r),
+        );
+        std::mem::swap(&mut self.plan, &mut self.cand);
+        self.plan_at = 0;
+        self.replay = self.planning();
+    }
+
+    /// The best line below root child `i`: its cell, then the child with
+    /// the lowest return found, while there is one.
+    fn best_line(&self, i: usize, out: &mut Vec<u32>) {
+        out.clear();
+        let mut k = self.nodes[0].children[i];
+        while k != NONE && self.nodes[k as usize].visits > 0 {
+            let n = &self.nodes[k as usize];
+            out.push(n.cell);
+            k = n
+                .children
+                .iter()
+                .copied()
+                .filter(|&c| c != NONE && self.nodes[c as usize].visits > 0)
+                .min_by(|&a, &b| {
+                    self.nodes[a as usize]
+                        .lo
+                        .total_cmp(&self.nodes[b as usize].lo)
+                })
+                .unwrap_or(NONE);
         }
     }
 
@@ -458,7 +655,27 @@ impl Stats for BeliefTree {
                     k += 1;
                 }
             }
-            let (i, id, expanded) = if k > 0 && self.nodes.len() < self.max_nodes {
+            let forced = if self.replay && node == 0 {
+                Move::ALL
+                    .iter()
+                    .position(|&m| env.torus.step(cur.cell, m) == self.plan[self.plan_at])
+            } else {
+                None
+            };
+            let (i, id, expanded) = if let Some(i) = forced {
+                // The plan's loop: its first cell, then the plan walk uncut.
+                if cur.children[i] == NONE {
+                    if self.nodes.len() >= self.max_nodes {
+                        self.replay = false;
+                        break;
+                    }
+                    let id = self.nodes.len() as u32;
+                    self.nodes
+                        .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
+                    self.nodes[node as usize].children[i] = id;
+                }
+                (i, self.nodes[node as usize].children[i], true)
+            } else if k > 0 && self.nodes.len() < self.max_nodes {
                 let i = miss[rng::below(env.rng, k as u32) as usize];
                 let id = self.nodes.len() as u32;
                 self.nodes
@@ -488,18 +705,31 @@ impl Stats for BeliefTree {
         // same reference tail, and the returns would not tell moves apart
         // (all of them, with a delta prior far away).
         self.walk.begin_rollout();
+        self.pwalk = PlanWalk::new();
+        let planning = self.planning();
+        let replay = std::mem::take(&mut self.replay);
         let mut cut = false;
         let cut_below = 1.0 - (1.0 - CUT_SHARE) * (1.0 - covered / mass);
         while !done(exact, tau) && t - depth < env.rollout_cap {
-            if exact && t - depth >= self.depth && covered / mass >= cut_below {
+            if exact && !replay && t - depth >= self.depth && covered / mass >= cut_below {
                 g += self.tail(1.0 - covered / mass);
                 exact = false;
                 cut = true;
                 break;
             }
-            let m = self
-                .walk
-                .next_move(env.torus, sensor, belief, &self.cov, env.rng, cell);
+            let planned = if planning {
+                let plan = &self.plan[self.plan_at..];
+                self.pwalk
+                    .next_move(env.torus, sensor, belief, &self.cov, plan, cell)
+            } else {
+                None
+            };
+            let m = match planned {
+                Some(m) => m,
+                None => self
+                    .walk
+                    .next_move(env.torus, sensor, belief, &self.cov, env.rng, cell),
+            };
             advance_to!(env.torus.step(cell, m));
         }
         let steps = t - depth;
@@ -528,6 +758,12 @@ impl Stats for BeliefTree {
     /// Re-roots the tree at the child reached by `m`, keeping its subtree;
     /// its returns are rescaled to the new belief at the next loop.
     fn advance(&mut self, m: Move) {
+        if self.planned.take() == Some(m) {
+            self.plan_at += 1;
+        } else {
+            self.plan.clear();
+            self.plan_at = 0;
+        }
         let Some(root) = self.nodes.first() else {
             return;
         };
@@ -545,11 +781,107 @@ impl Stats for BeliefTree {
             |n| &mut n.children,
         );
         self.rescale = true;
+        // A kept root's best return may be a checked one, above what its
+        // children's loops saw: the root's range must hold theirs.
+        let root = self.nodes[0];
+        for k in root.children.into_iter().filter(|&k| k != NONE) {
+            let n = self.nodes[k as usize];
+            if n.visits > 0 {
+                self.nodes[0].lo = self.nodes[0].lo.min(n.lo);
+                self.nodes[0].hi = self.nodes[0].hi.max(n.hi);
+            }
+        }
         self.update_intent();
     }
 
     fn intent(&self) -> &[u32] {
-        &self.intent
+        if self.planning() {
+            let plan = &self.plan[self.plan_at..];
+            &plan[..plan.len().min(MAX_INTENT)]
+        } else {
+            &self.intent
+        }
+    }
+
+    /// With a plan: checks the best line below each root child whose best
+    /// return beats the plan's by completing it with the plan walk and
+    /// counting its return exactly, adopts the cheapest path as the plan,
+    /// and plays its first move. A checked child's best return becomes its
+    /// exact one, so the decision panel leads with the move played.
+    fn conclude(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cap: u32,
+    ) -> Option<Move> {
+        let mass = belief.remaining();
+        if !self.planning() || self.nodes.is_empty() || mass <= NO_MASS {
+            return None;
+        }
+        let root = self.nodes[0].cell;
+        let on_plan = Move::ALL
+            .iter()
+            .position(|&m| torus.step(root, m) == self.plan[self.plan_at])?;
+        let lo = |t: &BeliefTree, i: usize| match t.nodes[0].children[i] {
+            NONE => f64::INFINITY,
+            k if t.nodes[k as usize].visits == 0 => f64::INFINITY,
+            k => t.nodes[k as usize].lo,
+        };
+        let mut order = [0, 1, 2, 3];
+        order.sort_by(|&a, &b| lo(self, a).total_cmp(&lo(self, b)));
+        let (mut best, mut chosen, mut adopted) = (self.plan_cost, on_plan, false);
+        let mut line = std::mem::take(&mut self.best_cells);
+        for i in order {
+            let l = lo(self, i);
+            if !(l < best || (l == best && i != chosen && l.is_finite())) {
+                continue;
+            }
+            self.best_line(i, &mut line);
+            let cost = follow_plan(
+                torus,
+                sensor,
+                belief,
+                mass,
+                cap,
+                &mut self.cov,
+                &self.plan[self.plan_at..],
+                root,
+                &line,
+                &mut self.cand,
+                None,
+            );
+            let k = self.nodes[0].children[i] as usize;
+            self.nodes[k].lo = if i == on_plan {
+                cost.min(self.plan_cost)
+            } else {
+                cost
+            };
+            // A checked return is one seen through the root: values stay in [0, 1].
+            self.nodes[0].hi = self.nodes[0].hi.max(cost);
+            if cost < best {
+                best = cost;
+                chosen = i;
+                adopted = true;
+                std::mem::swap(&mut self.cand, &mut self.plan);
+                self.plan_at = 0;
+            }
+        }
+        self.best_cells = line;
+        if adopted {
+            self.plan_cost = best;
+        }
+        let k = self.nodes[0].children[chosen];
+        if k != NONE {
+            let n = &mut self.nodes[k as usize];
+            n.lo = n.lo.min(best);
+        }
+        let floor = (0..4).map(|i| lo(self, i)).fold(f64::INFINITY, f64::min);
+        if floor.is_finite() {
+            self.nodes[0].lo = floor;
+        }
+        self.planned = Some(Move::ALL[chosen]);
+        self.planned
     }
 }
 
@@ -643,7 +975,7 @@ mod tests {
         let mut hand = Hand::new(cfg(5.0), 5);
         let start = hand.game.start;
         let cells = hand.game.torus.cells();
-        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Range, 0.01, 10_000);
+        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Range, 0.01, 10_000, 0);
         tree.begin_decision(start, false);
         hand.run(&mut tree, start, 200);
         let m = Move::Right;
@@ -684,7 +1016,7 @@ mod tests {
 
     #[test]
     fn the_reference_tail_is_what_the_walk_still_spent_scaled_to_the_mass_left() {
-        let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10);
+        let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10, 0);
         tree.ref_r = vec![0.8, 0.5, 0.2, 0.0];
         tree.ref_tail = vec![0.7, 0.2, 0.0, 0.0];
         // At most 0.5 left first at t = 1, which still spent 0.2 for 0.5.
@@ -709,7 +1041,7 @@ mod tests {
         assert_eq!(super::super::final_rule(&c), super::super::FinalRule::Mean);
         let mut hand = Hand::new(c, 9);
         let (start, cells) = (hand.game.start, hand.game.torus.cells());
-        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Best, 0.0, 30);
+        let mut tree = BeliefTree::new(cells, 1 << 12, Scale::Best, 0.0, 30, 0);
         tree.begin_decision(start, false);
         hand.run(&mut tree, start, 300);
         let view = tree.view(&hand.game.torus, start, hand.c.c);
@@ -761,6 +1093,37 @@ mod tests {
             );
             assert!((ch.uct - ch.mean - ch.explore).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn is_never_worse_than_its_plan_and_the_tree_improves_on_it() {
+        // Each trial's blind path, counted exactly, against the plan's
+        // horizon rule alone (N = 24, σ = 4). Adopting the best-looking
+        // line unchecked gives paths above the plan's mean; never leaving
+        // the plan gives the plan's mean exactly.
+        let mut c = cfg(4.0);
+        c.n = 24;
+        let plan = crate::searchers::base_mean(
+            &Config {
+                horizon: c.pomcp_plan,
+                ..c.clone()
+            },
+            crate::searchers::Base::Horizon,
+        )
+        .unwrap();
+        let trials = 3;
+        let mut sum = 0.0;
+        for i in 0..trials {
+            let m = crate::exact::blind_mean(&c, i).unwrap().mean;
+            assert!(m <= plan + 1e-9, "trial {i}: {m} > the plan's {plan}");
+            sum += m;
+        }
+        let mean = sum / trials as f64;
+        assert!(
+            mean < plan - 0.4,
+            "the tree gained {} steps on the plan's {plan}",
+            plan - mean
+        );
     }
 
     #[test]

@@ -213,6 +213,36 @@ pub fn decide(
     }
 }
 
+/// Completes the search from `pos` by the horizon rule (its far goal only
+/// when nothing within the horizon adds mass, as rollout improvement's
+/// `horizon` base), writing the cells entered into `out`: until every
+/// unsearched cell with planning mass is covered, or `cap` moves. `cov`
+/// must hold no simulation, and is left holding none.
+#[allow(clippy::too_many_arguments)]
+pub fn completion(
+    look: &mut Lookahead,
+    torus: &Torus,
+    sensor: &Sensor,
+    belief: &BeliefState,
+    cov: &mut Coverage,
+    pos: u32,
+    last: Option<Move>,
+    cap: usize,
+    out: &mut Vec<u32>,
+) {
+    let mut left = super::plan::mass_cells_left(belief);
+    let (mut p, mut last) = (pos, last);
+    out.clear();
+    while left > 0 && out.len() < cap {
+        let (m, _, _) = decide(look, torus, sensor, belief, cov, p, last, false);
+        p = torus.step(p, m);
+        left -= cov.cover_counted(sensor, belief, p).1;
+        out.push(p);
+        last = Some(m);
+    }
+    cov.clear();
+}
+
 /// The receding-horizon searcher.
 pub struct Horizon {
     look: Lookahead,

@@ -20,7 +20,7 @@ mod random_walk;
 mod sweep;
 
 pub use greedy::Greedy;
-pub use horizon::{Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
+pub use horizon::{completion, Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
 pub use improve::{base_mean, Base, Improve};
 pub use levy::{flight_end, Directions, FlightLengths, Levy};
 pub use nsarw::Nsarw;
