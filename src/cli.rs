@@ -20,7 +20,7 @@ use torus_search::experiment::{self, Plan, ResultSet, Shard, Spec, SpecError};
 use torus_search::mcts::Variant;
 use torus_search::preset::Preset;
 use torus_search::searchers::PolicyKind;
-use torus_search::stats::Summary;
+use torus_search::stats::{self, Summary};
 
 /// `println!` that ends the process quietly when stdout is closed (as in
 /// `torus-search bench | head -1`) instead of panicking.
@@ -157,6 +157,13 @@ fn run_command() -> Command {
             .long("exact")
             .action(ArgAction::SetTrue)
             .help("deterministic searchers only: one pass along the searcher's path gives E[min(T, step cap)] exactly, instead of sampling trials"),
+    )
+    .arg(
+        Arg::new("blind")
+            .long("blind")
+            .action(ArgAction::SetTrue)
+            .conflicts_with("exact")
+            .help("any searcher: count each trial's path exactly (Σ R_t along the path it follows until it detects the target) and report the mean over trials with its 95% CI; the target's share of the noise is removed"),
     )
     .arg(
         Arg::new("dry-run")
@@ -359,6 +366,9 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
         return run_exact(&cfg, m.get_flag("json"));
     }
     let (threads, pool) = thread_pool(m)?;
+    if m.get_flag("blind") {
+        return run_blind(&cfg, trials, threads, &pool, m.get_flag("json"));
+    }
     let t0 = Instant::now();
     let results: Vec<TrialResult> = with_progress(&pool, 0..trials, "trials", |i| {
         batch::trial(&cfg, i).expect("the config was validated above")
@@ -431,6 +441,86 @@ fn run_exact(cfg: &Config, json: bool) -> Result<(), UsageError> {
     out!("{:<28}{:>10.3e}", "P(capped)", exact.capped_probability);
     out!("{:<28}{}", "moves driven", exact.moves);
     out!("{:<28}{:.3} s", "time", seconds);
+    Ok(())
+}
+
+/// `run --blind`: the exact means of the trials' blind paths.
+fn run_blind(
+    cfg: &Config,
+    trials: u64,
+    threads: usize,
+    pool: &rayon::ThreadPool,
+    json: bool,
+) -> Result<(), UsageError> {
+    exact::check_blind(cfg).map_err(|e| match e {
+        exact::ExactError::Config(e) => usage(e),
+        e => UsageError(e.to_string()),
+    })?;
+    let t0 = Instant::now();
+    let each: Vec<exact::Exact> = with_progress(pool, 0..trials, "trials", |i| {
+        exact::blind_mean(cfg, i).expect("the config was validated above")
+    });
+    let seconds = t0.elapsed().as_secs_f64();
+    let n = each.len().max(1) as f64;
+    let blind_mean = stats::MeanCi::of(each.iter().map(|e| e.mean));
+    let lower_bound = bound::lower_bound_capped(cfg).map_err(usage)?;
+    let report = exact::BlindReport {
+        blind_mean,
+        min: each.iter().map(|e| e.mean).fold(f64::INFINITY, f64::min),
+        max: each
+            .iter()
+            .map(|e| e.mean)
+            .fold(f64::NEG_INFINITY, f64::max),
+        capped_probability: each.iter().map(|e| e.capped_probability).sum::<f64>() / n,
+        mean_moves: each.iter().map(|e| e.moves as f64).sum::<f64>() / n,
+        lower_bound,
+        mean_over_bound: (lower_bound > 0.0).then(|| blind_mean.mean / lower_bound),
+        seconds,
+        threads,
+        seed: cfg.seed,
+        config: cfg,
+    };
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&report).expect("a report serialises")
+        );
+        return Ok(());
+    }
+    out!(
+        "torus-search: N={} r_v={} prior={} start={},{} ({} blind paths, counted exactly)",
+        cfg.n,
+        cfg.rv,
+        cfg.prior_label(),
+        cfg.start[0],
+        cfg.start[1],
+        trials
+    );
+    out!("searcher: {}", cfg.label());
+    out!(
+        "{:<28}{:>10.3}   95% CI [{:.3}, {:.3}]",
+        "mean steps",
+        blind_mean.mean,
+        blind_mean.lo,
+        blind_mean.hi
+    );
+    out!(
+        "{:<28}{:>10.3} to {:.3}",
+        "trials' exact means",
+        report.min,
+        report.max
+    );
+    out!(
+        "{:<28}{:>10.3}   (mean steps / bound {})",
+        "lower bound (any searcher)",
+        lower_bound,
+        report
+            .mean_over_bound
+            .map_or("–".into(), |r| format!("{r:.4}"))
+    );
+    out!("{:<28}{:>10.3e}", "P(capped)", report.capped_probability);
+    out!("{:<28}{:.1}", "moves driven per trial", report.mean_moves);
+    out!("{:<28}{:.3} s ({} threads)", "time", seconds, threads);
     Ok(())
 }
 

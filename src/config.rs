@@ -1066,8 +1066,10 @@ impl Config {
         let budget = self
             .ms
             .map_or_else(|| format!("L={}", self.loops), |ms| format!("{ms} ms"));
-        // The belief MCTS rolls out with its own coverage walk.
+        // The belief MCTS rolls out with its own walks: along its plan, or
+        // the coverage walk without one.
         let rollout = match self.variant {
+            Variant::Pomcp if self.pomcp_plan > 0 => "plan",
             Variant::Pomcp => "coverage",
             _ => self.rollout.name(),
         };

@@ -26,7 +26,10 @@ pub enum ExactError {
     },
     /// With `known` the searcher plans with the target's cell, so its path
     /// depends on the target.
-    Known,
+    Known {
+        /// The flag that asked: `--exact` or `--blind`.
+        flag: &'static str,
+    },
     /// The configuration is invalid.
     Config(ConfigError),
 }
@@ -39,9 +42,9 @@ impl fmt::Display for ExactError {
                 "--exact needs a deterministic searcher ({}), got {searcher}",
                 deterministic_names().join(", ")
             ),
-            ExactError::Known => write!(
+            ExactError::Known { flag } => write!(
                 f,
-                "--exact cannot evaluate --known: the path then depends on the target"
+                "{flag} cannot evaluate --known: the path then depends on the target"
             ),
             ExactError::Config(e) => e.fmt(f),
         }
@@ -98,7 +101,7 @@ pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
         });
     }
     if cfg.known {
-        return Err(ExactError::Known);
+        return Err(ExactError::Known { flag: "--exact" });
     }
     Ok(blind_mean(cfg, 0)?)
 }
@@ -139,6 +142,48 @@ pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ConfigError> {
         capped_probability: pm.uncovered,
         moves: ep.steps(),
     })
+}
+
+/// What `run --blind` reports: trials' blind paths counted exactly.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BlindReport<'a> {
+    /// The exact means of the trials' blind paths: their mean estimates
+    /// `E[min(T, step_cap)]`, with a 95% CI over trials.
+    pub blind_mean: crate::stats::MeanCi,
+    /// The smallest and largest trial's exact mean.
+    pub min: f64,
+    /// See `min`.
+    pub max: f64,
+    /// The mean probability that a trial is capped.
+    pub capped_probability: f64,
+    /// Moves driven per trial, on average.
+    pub mean_moves: f64,
+    /// The lower bound on the mean steps of any searcher.
+    pub lower_bound: f64,
+    /// The mean ÷ the lower bound (`None` when the bound is 0).
+    pub mean_over_bound: Option<f64>,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Threads used (results do not depend on it).
+    pub threads: usize,
+    /// The seed (also in `config`).
+    pub seed: u64,
+    /// The full resolved configuration.
+    pub config: &'a Config,
+}
+
+/// Checks that trials' blind paths estimate the mean of `cfg`: they do
+/// unless the searcher knows the target.
+///
+/// # Errors
+/// [`ExactError::Known`] with `known`, [`ExactError::Config`] for an
+/// invalid configuration.
+pub fn check_blind(cfg: &Config) -> Result<(), ExactError> {
+    cfg.game()?;
+    if cfg.known {
+        return Err(ExactError::Known { flag: "--blind" });
+    }
+    Ok(())
 }
 
 /// What `run --exact` reports.

@@ -91,6 +91,10 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--exact cannot evaluate --known",
         ),
         (
+            &["run", "--known", "--blind"],
+            "--blind cannot evaluate --known",
+        ),
+        (
             &["run", "--searcher", "bogus"],
             "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, got bogus",
         ),
@@ -176,6 +180,29 @@ fn json(args: &[&str]) -> serde_json::Value {
         "exactly one line of JSON: {text}"
     );
     serde_json::from_str(text.trim()).expect("valid JSON")
+}
+
+#[test]
+fn blind_paths_of_a_planner_give_its_exact_mean() {
+    let base = [
+        "run",
+        "--searcher",
+        "horizon",
+        "--sigma",
+        "3",
+        "--n",
+        "16",
+        "--json",
+    ];
+    let exact = json(&[&base[..], &["--exact"]].concat());
+    let blind = json(&[&base[..], &["--blind", "--trials", "3"]].concat());
+    let want = exact["exact"]["mean"].as_f64().unwrap();
+    assert_eq!(blind["blind_mean"]["n"], 3);
+    assert_eq!(blind["blind_mean"]["mean"].as_f64().unwrap(), want);
+    assert_eq!(blind["blind_mean"]["sd"].as_f64().unwrap(), 0.0);
+    assert!(blind["lower_bound"].as_f64().unwrap() <= want);
+    let o = cli(&["run", "--blind", "--exact"]);
+    assert_eq!(o.status.code(), Some(2));
 }
 
 #[test]

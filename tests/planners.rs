@@ -10,9 +10,10 @@ use common::searcher;
 use torus_search::batch::run_trials;
 use torus_search::bound::{dp_optimum, lower_bound};
 use torus_search::config::Config;
-use torus_search::exact::{exact_mean, ExactError};
+use torus_search::exact::{blind_mean, exact_mean, ExactError};
 use torus_search::prior::PriorKind;
 use torus_search::searchers::{base_mean, Base};
+use torus_search::stats::MeanCi;
 
 fn planner(name: &str, n: u32, prior: PriorKind, sigma: f64) -> Config {
     Config {
@@ -40,6 +41,44 @@ fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
         ));
     }
     v
+}
+
+/// For a searcher that draws random numbers, the mean of the trials'
+/// blind paths counted exactly (`run --blind`) agrees with sampled trials
+/// within 4 standard errors, each trial's path being its own (a path
+/// shared by every trial would have no spread).
+#[test]
+fn blind_means_of_random_searchers_match_sampled_trials() {
+    for name in ["rw", "nsarw"] {
+        let cfg = Config {
+            searcher: searcher(name),
+            n: 10,
+            sigma: 2.5,
+            step_cap: 100_000,
+            seed: 5,
+            ..Config::default()
+        };
+        let blind = MeanCi::of((0..300).map(|i| blind_mean(&cfg, i).unwrap().mean));
+        let sampled = MeanCi::of(
+            run_trials(&cfg, 0, 3000)
+                .unwrap()
+                .iter()
+                .map(|t| t.steps as f64),
+        );
+        let se = (blind.se().powi(2) + sampled.se().powi(2)).sqrt();
+        assert!(
+            (blind.mean - sampled.mean).abs() <= 4.0 * se,
+            "{name}: blind {} vs sampled {} (4 SE = {})",
+            blind.mean,
+            sampled.mean,
+            4.0 * se
+        );
+        assert!(blind.sd > 0.0, "{name}: every trial followed one path");
+        assert!(
+            blind.se() < sampled.se(),
+            "{name}: the target's noise was not removed"
+        );
+    }
 }
 
 /// Σ R_t from one pass equals the sampled mean within 4 standard errors.
@@ -196,7 +235,10 @@ fn random_searchers_are_refused_exact_evaluation() {
         known: true,
         ..planner("sweep", 10, PriorKind::Uniform, 0.0)
     };
-    assert_eq!(exact_mean(&known).unwrap_err(), ExactError::Known);
+    assert_eq!(
+        exact_mean(&known).unwrap_err(),
+        ExactError::Known { flag: "--exact" }
+    );
 }
 
 /// Cost per move of each planner at N = 40 and N = 256 (σ = 10, the first
