@@ -22,11 +22,12 @@ CAP=$((20 * N * N))
 declare -A SEARCHER=(
   [cells]="--searcher mcts --variant cells"
   [tree]="--searcher mcts --variant tree"
+  [pomcp]="--searcher mcts --variant pomcp"
   [rw]="--searcher rw"
   [levy]="--searcher levy"
   [nsarw]="--searcher nsarw"
 )
-ORDER=(cells tree rw levy nsarw)
+ORDER=(cells tree pomcp rw levy nsarw)
 if (($# > 0)); then ORDER=("$@"); fi
 PRIORS=("--sigma 0" "--sigma 2.5" "--sigma 5" "--sigma 10" "--prior uniform")
 cargo build --release --quiet
