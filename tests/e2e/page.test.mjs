@@ -631,6 +631,29 @@ test("a planner draws its path ahead and the decision panel shows its scores of 
   });
 });
 
+test('the belief MCTS draws its plan ahead, one cell a step from where it stands', { timeout: 120_000 }, async () => {
+  await withApp('?variant=pomcp&n=20&sigma=3&speed=1', async (page) => {
+    await page.waitForFunction(() => {
+      const r = window.torusTest.runs()[0];
+      // A plan runs to the end of the search; the tree's most visited line
+      // (with no plan) is a few cells.
+      return r && r.steps >= 2 && r.intent.length > 20;
+    }, null, { timeout: 60_000 });
+    const [r, path] = await page.evaluate(() => [window.torusTest.runs()[0], window.torusTest.path()]);
+    assert.equal(r.config.variant, 'pomcp');
+    assert.equal(r.intent[0], path.at(-1));
+    const n = r.n;
+    for (let i = 1; i < r.intent.length; i++) {
+      const [a, b] = [r.intent[i - 1], r.intent[i]];
+      const dx = Math.min(Math.abs((a % n) - (b % n)), n - Math.abs((a % n) - (b % n)));
+      const dy = Math.min(Math.abs(Math.floor(a / n) - Math.floor(b / n)), n - Math.abs(Math.floor(a / n) - Math.floor(b / n)));
+      assert.equal(dx + dy, 1, `plan step ${i}: ${a} → ${b}`);
+    }
+    // The UCT split is still shown for it: it is an MCTS.
+    await page.waitForFunction(() => document.getElementById('decision').checkVisibility(), null, { timeout: 10_000 });
+  });
+});
+
 test('teaching view, clicking the grid sets the start, painting a prior', { timeout: 180_000 }, async () => {
   await withApp('?autoplay=0', async (page) => {
     await page.click('#teaching');
