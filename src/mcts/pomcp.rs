@@ -66,8 +66,8 @@
 //! first plan's (the plan walk only skips stretches that cover nothing new,
 //! so it reaches every later cell of the plan no later), and the tree's
 //! finds are what it gains (README, "The belief MCTS"). A checked child's
-//! best return becomes its exact one, so the value the decision panel
-//! shows leads with the move played.
+//! best return becomes its exact one, so under the default `best` scale
+//! the value the decision panel shows leads with the move played.
 //!
 //! **The cut.** Counting Σ Rₜ to the end means rolling out until all mass
 //! is covered, hundreds of steps. A rollout is instead cut `pomcp_depth`
@@ -807,7 +807,7 @@ impl Stats for BeliefTree {
     /// return beats the plan's by completing it with the plan walk and
     /// counting its return exactly, adopts the cheapest path as the plan,
     /// and plays its first move. A checked child's best return becomes its
-    /// exact one, so the decision panel leads with the move played.
+    /// exact one, so under `best` the decision panel leads with the move played.
     fn conclude(
         &mut self,
         torus: &Torus,

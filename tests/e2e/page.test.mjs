@@ -588,6 +588,16 @@ test('race mode: same target and seed, side by side, with a scoreboard', { timeo
   });
 });
 
+/** Each cell of `cells` is one torus step from the one before. */
+function assertUnitSteps(cells, n) {
+  for (let i = 1; i < cells.length; i++) {
+    const [a, b] = [cells[i - 1], cells[i]];
+    const dx = Math.min(Math.abs((a % n) - (b % n)), n - Math.abs((a % n) - (b % n)));
+    const dy = Math.min(Math.abs(Math.floor(a / n) - Math.floor(b / n)), n - Math.abs(Math.floor(a / n) - Math.floor(b / n)));
+    assert.equal(dx + dy, 1, `step ${i}: ${a} → ${b}`);
+  }
+}
+
 test("race: the paper's MCTS against the belief MCTS, both to found, on the same target and seed", { timeout: 240_000 }, async () => {
   await withApp('?preset=paper-code&race=mcts-pomcp&n=16&sigma=2&seed=5&speed=max', async (page) => {
     const runs = await page.evaluate(() => window.torusTest.runs());
@@ -613,13 +623,7 @@ test("a planner draws its path ahead and the decision panel shows its scores of 
     assert.match(r.scores.meaning, /\w/);
     // The path ahead starts where the searcher stands and moves one cell a step.
     assert.equal(r.intent[0], path.at(-1));
-    const n = r.n;
-    for (let i = 1; i < r.intent.length; i++) {
-      const [a, b] = [r.intent[i - 1], r.intent[i]];
-      const dx = Math.min(Math.abs((a % n) - (b % n)), n - Math.abs((a % n) - (b % n)));
-      const dy = Math.min(Math.abs(Math.floor(a / n) - Math.floor(b / n)), n - Math.abs(Math.floor(a / n) - Math.floor(b / n)));
-      assert.equal(dx + dy, 1, `intent step ${i}: ${a} → ${b}`);
-    }
+    assertUnitSteps(r.intent, r.n);
     await page.waitForFunction(() => !document.getElementById('plan-scores').hidden, null, { timeout: 10_000 });
     assert.equal(await page.locator('#decision').isVisible(), false, 'the UCT table gives way to the scores');
     assert.equal(await page.locator('#plan-scores tbody tr').count(), 4);
@@ -642,13 +646,7 @@ test('the belief MCTS draws its plan ahead, one cell a step from where it stands
     const [r, path] = await page.evaluate(() => [window.torusTest.runs()[0], window.torusTest.path()]);
     assert.equal(r.config.variant, 'pomcp');
     assert.equal(r.intent[0], path.at(-1));
-    const n = r.n;
-    for (let i = 1; i < r.intent.length; i++) {
-      const [a, b] = [r.intent[i - 1], r.intent[i]];
-      const dx = Math.min(Math.abs((a % n) - (b % n)), n - Math.abs((a % n) - (b % n)));
-      const dy = Math.min(Math.abs(Math.floor(a / n) - Math.floor(b / n)), n - Math.abs(Math.floor(a / n) - Math.floor(b / n)));
-      assert.equal(dx + dy, 1, `plan step ${i}: ${a} → ${b}`);
-    }
+    assertUnitSteps(r.intent, r.n);
     // The UCT split is still shown for it: it is an MCTS.
     await page.waitForFunction(() => document.getElementById('decision').checkVisibility(), null, { timeout: 10_000 });
   });
