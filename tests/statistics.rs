@@ -601,3 +601,51 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
     println!("NSARW: {steps} steps replayed");
     assert!(steps > 10_000 && ties[4].iter().sum::<u64>() > 300);
 }
+
+#[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
+fn nsarw_rollouts_step_to_a_least_visited_neighbour_uniformly() {
+    // The MCTS rollout loop breaks ties its own way (a random order of the
+    // moves drawn ahead): replay rollouts, several on one policy so that
+    // older walks' counts must be forgotten, with the walker's checks.
+    let t = Torus::new(11).unwrap();
+    let mask = vec![0u8; t.cells()];
+    let mut policy = Policy::new(PolicyKind::Nsarw, &t, 2.0, 0.2);
+    let mut r = rng::stream(701, 0);
+    let mut ties = [[0u64; 4]; 5];
+    let mut steps = 0u64;
+    for i in 0..200u32 {
+        let start = (i * 37) % t.cells() as u32;
+        policy.begin(start, start);
+        let mut path = vec![start];
+        policy.rollout(&t, &mask, &mut r, start, 300, &mut path);
+        let mut count = vec![0u32; t.cells()];
+        count[start as usize] = 1;
+        for w in path.windows(2) {
+            let (c, next) = (w[0], w[1]);
+            let nbs: Vec<u32> = Move::ALL.iter().map(|&m| t.step(c, m)).collect();
+            assert!(nbs.contains(&next), "not a unit move");
+            let least = nbs.iter().map(|&b| count[b as usize]).min().unwrap();
+            assert_eq!(
+                count[next as usize], least,
+                "rollout {i}: not a least-visited neighbour"
+            );
+            let tied: Vec<u32> = nbs
+                .into_iter()
+                .filter(|&b| count[b as usize] == least)
+                .collect();
+            ties[tied.len()][tied.iter().position(|&b| b == next).unwrap()] += 1;
+            count[next as usize] += 1;
+            steps += 1;
+        }
+    }
+    for (k, row) in ties.iter().enumerate().skip(2) {
+        let obs = &row[..k];
+        if obs.iter().sum::<u64>() < 50 {
+            continue;
+        }
+        let (stat, df) = chi2_merged(obs, &vec![1.0 / k as f64; k]);
+        println!("NSARW rollouts, {k}-way ties: {obs:?} chi2 {stat:.2} on {df} df");
+        assert!(stat < chi2_crit_1e4(df), "{k}-way ties {obs:?}");
+    }
+    assert!(steps > 50_000 && ties[4].iter().sum::<u64>() > 300);
+}

@@ -21,41 +21,54 @@ pub static INFO: SearcherInfo = SearcherInfo {
     },
 };
 
-/// Marks a byte that must be redrawn (a 3-way tie drew 255).
-const REDRAW: u8 = 4;
-
-/// `PICK[tied][b]`: the move chosen among the moves whose bits are set in
-/// `tied`, by a uniform random byte `b`: the `(b mod k)`-th of the k tied
-/// moves, except that a 3-way tie redraws `b = 255` ([`REDRAW`], once in
-/// 256), so that each tied move has probability exactly 1/k.
-const PICK: [[u8; 256]; 16] = {
-    let mut t = [[REDRAW; 256]; 16];
-    let mut tied = 1;
-    while tied < 16 {
-        let k = (tied as u32).count_ones() as usize;
+/// `TIE[k]`: the k-th of the 24 orders of the four moves, each move's rank
+/// shifted left by 2 (bits 2–3 of a key). A step takes the least key
+/// `visits << 4 | rank << 2 | move`: fewest visits first, ties by a uniform
+/// random order, so each of k tied moves is taken with probability exactly
+/// 1/k.
+const TIE: [[u64; 4]; 24] = {
+    let mut t = [[0u64; 4]; 24];
+    let mut k = 0;
+    let mut a = 0;
+    while a < 4 {
         let mut b = 0;
-        while b < 256 {
-            if !(k == 3 && b == 255) {
-                let nth = b % k;
-                // The nth set bit of `tied`.
-                let mut seen = 0;
-                let mut m = 0;
-                while m < 4 {
-                    if tied & (1 << m) != 0 {
-                        if seen == nth {
-                            t[tied][b] = m as u8;
-                        }
-                        seen += 1;
-                    }
-                    m += 1;
+        while b < 4 {
+            let mut c = 0;
+            while c < 4 {
+                // d is the rank left over when a, b, c are distinct.
+                if a != b && a != c && b != c {
+                    let d = 6 - a - b - c;
+                    t[k] = [a << 2, b << 2, c << 2, d << 2];
+                    k += 1;
                 }
+                c += 1;
             }
             b += 1;
         }
-        tied += 1;
+        a += 1;
     }
     t
 };
+
+/// A uniform index into [`TIE`] from 16 of the random bits in `bits`
+/// (`left` draws of 16 bits remain in it; refilled from `rng`): multiply
+/// by 24 and keep the top 16 bits, redrawing the 16 of 65 536 values that
+/// would make some orders likelier (once in 4096 draws).
+#[inline(always)]
+fn order(rng: &mut Rng, bits: &mut u64, left: &mut u32) -> usize {
+    loop {
+        if *left == 0 {
+            *bits = rng::bits(rng);
+            *left = 4;
+        }
+        let x = (*bits & 0xffff) * 24;
+        *bits >>= 16;
+        *left -= 1;
+        if x & 0xffff >= 16 {
+            return (x >> 16) as usize;
+        }
+    }
+}
 
 /// NSARW with its own visit counts.
 ///
@@ -101,23 +114,36 @@ impl Nsarw {
         self.top = self.top.max(*v);
     }
 
-    /// The tied least-visited moves from the cell at table offset `p`
-    /// (4 × the cell), as a 4-bit mask in move order.
+    /// The move to a least-visited neighbour of the cell at table offset
+    /// `p` (4 × the cell), ties broken by the order `TIE[k]`, and the
+    /// neighbour's table offset. The neighbours are loaded once: the next
+    /// offset is selected from them, not loaded again, which keeps the
+    /// walk's chain of dependent loads short.
     ///
     /// # Safety
-    /// `p + 3 < nbr.len()`, and every entry of `nbr` is 4 × an index of `val`.
+    /// `p + 3 < nbr.len()`, every entry of `nbr` is 4 × an index of `val`,
+    /// and `k < 24`.
     #[inline(always)]
-    unsafe fn least(&self, nbr: &[u32], p: usize) -> usize {
-        let c = |m: usize| {
-            let q = *nbr.get_unchecked(p + m) as usize >> 2;
-            (*self.val.get_unchecked(q)).saturating_sub(self.base)
+    unsafe fn choose(&self, nbr: &[u32], p: usize, k: usize) -> (usize, usize) {
+        let r = TIE.get_unchecked(k);
+        let q = [
+            *nbr.get_unchecked(p),
+            *nbr.get_unchecked(p + 1),
+            *nbr.get_unchecked(p + 2),
+            *nbr.get_unchecked(p + 3),
+        ];
+        // Older walks' values (at most `base`) count 0.
+        let key = |i: usize| {
+            let v = (*self.val.get_unchecked(q[i] as usize >> 2)).max(self.base) as u64;
+            v << 4 | r[i] | i as u64
         };
-        let (c0, c1, c2, c3) = (c(0), c(1), c(2), c(3));
-        let lo = c0.min(c1).min(c2.min(c3));
-        (c0 == lo) as usize
-            | ((c1 == lo) as usize) << 1
-            | ((c2 == lo) as usize) << 2
-            | ((c3 == lo) as usize) << 3
+        let m = (key(0).min(key(1)).min(key(2).min(key(3))) & 3) as usize;
+        let (even, odd) = if m & 1 == 0 {
+            (q[0], q[2])
+        } else {
+            (q[1], q[3])
+        };
+        (m, (if m & 2 == 0 { even } else { odd }) as usize)
     }
 
     /// A uniformly random move among the least-visited neighbours.
@@ -128,22 +154,19 @@ impl Nsarw {
         let nbr = torus.neighbours();
         let p = 4 * cell as usize;
         assert!(p + 3 < nbr.len() && self.val.len() >= torus.cells());
-        // SAFETY: asserted just above; entries are 4 × a cell < cells().
-        let tied = unsafe { self.least(nbr, p) };
-        loop {
-            let m = PICK[tied][(rng::bits(rng) >> 56) as usize];
-            if m != REDRAW {
-                return Move::from_index(m as u32);
-            }
-        }
+        let (mut bits, mut left) = (0, 0);
+        let k = order(rng, &mut bits, &mut left);
+        // SAFETY: asserted just above; entries are 4 × a cell < cells(); k < 24.
+        let (m, _) = unsafe { self.choose(nbr, p, k) };
+        Move::from_index(m as u32)
     }
 
     /// Walks from `start` until `mask` marks the cell or `cap` moves,
     /// continuing the walk begun by [`Nsarw::begin`].
     ///
     /// The hot loop: the neighbour table, one word per neighbour, the tie
-    /// broken by a table and a random byte from a 64-bit draw (redrawn only
-    /// on a 3-way tie that drew 255), no allocation.
+    /// broken by a random order of the moves from 16 bits of a 64-bit draw
+    /// (off the walk's chain of loads), no allocation.
     ///
     /// # Panics
     /// If `mask` or the counts are shorter than the lattice.
@@ -174,22 +197,8 @@ impl Nsarw {
             // 4 × a cell index < cells() ≤ mask.len(), val.len() (asserted
             // above), so `p + 3 < nbr.len()` and `p >> 2` indexes both.
             unsafe {
-                let tied = self.least(nbr, p);
-                let m = loop {
-                    if left == 0 {
-                        bits = rng::bits(rng);
-                        left = 8;
-                    }
-                    let m = *PICK
-                        .get_unchecked(tied)
-                        .get_unchecked((bits & 255) as usize);
-                    bits >>= 8;
-                    left -= 1;
-                    if m != REDRAW {
-                        break m as usize;
-                    }
-                };
-                p = *nbr.get_unchecked(p + m) as usize;
+                let k = order(rng, &mut bits, &mut left);
+                p = self.choose(nbr, p, k).1;
                 core::hint::assert_unchecked(p % 4 == 0);
                 let cell = p >> 2;
                 let v = self.val.get_unchecked_mut(cell);
@@ -223,23 +232,43 @@ mod tests {
     use super::*;
 
     #[test]
-    fn pick_chooses_each_tied_move_equally_often() {
-        // Over the 256 bytes (redraws dropped), each tied move comes up
-        // equally often and no untied one ever does.
-        for (tied, row) in PICK.iter().enumerate().skip(1) {
-            let mut n = [0u32; 4];
-            for &m in row.iter().filter(|&&m| m != REDRAW) {
-                assert!(tied & (1 << m) != 0, "tied {tied:04b} picked {m}");
-                n[m as usize] += 1;
-            }
-            let hits: Vec<u32> = n.iter().copied().filter(|&x| x > 0).collect();
-            assert_eq!(
-                hits.len(),
-                (tied as u32).count_ones() as usize,
-                "{tied:04b}"
-            );
-            assert!(hits.iter().all(|&x| x == hits[0]), "{tied:04b}: {n:?}");
+    fn each_tied_move_leads_equally_many_of_the_orders() {
+        // The 24 orders are the permutations, so within any set of tied
+        // moves each move ranks first in 24/k of them.
+        let mut seen = std::collections::HashSet::new();
+        for r in TIE {
+            let mut ranks: Vec<u64> = r.iter().map(|x| x >> 2).collect();
+            ranks.sort();
+            assert_eq!(ranks, [0, 1, 2, 3]);
+            assert!(seen.insert(r), "{r:?} twice");
         }
+        for tied in 1..16usize {
+            let moves: Vec<usize> = (0..4).filter(|m| tied & (1 << m) != 0).collect();
+            let mut first = [0; 4];
+            for r in TIE {
+                first[*moves.iter().min_by_key(|&&m| r[m]).unwrap()] += 1;
+            }
+            for &m in &moves {
+                assert_eq!(first[m], 24 / moves.len(), "{tied:04b}: {first:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn orders_are_drawn_uniformly() {
+        // Every 16-bit value: each order from exactly 2730, 16 redrawn.
+        let mut n = [0u32; 24];
+        let mut redrawn = 0;
+        for x in 0..=0xffffu64 {
+            let y = x * 24;
+            if y & 0xffff >= 16 {
+                n[(y >> 16) as usize] += 1;
+            } else {
+                redrawn += 1;
+            }
+        }
+        assert_eq!(n, [2730; 24]);
+        assert_eq!(redrawn, 16);
     }
 
     #[test]
@@ -252,9 +281,13 @@ mod tests {
         w.rollout(&t, &mask, &mut r, 0, 200, &mut crate::searchers::NoVisit);
         w.begin(12);
         // Only the start has been visited in the new walk: all four
-        // neighbours of the start are tied, whatever the old walk left.
+        // neighbours of the start are tied, whatever the old walk left, so
+        // each is chosen under some order.
         let p = 4 * 12;
-        assert_eq!(unsafe { w.least(t.neighbours(), p) }, 0b1111);
+        let chosen: std::collections::HashSet<usize> = (0..24)
+            .map(|k| unsafe { w.choose(t.neighbours(), p, k) }.0)
+            .collect();
+        assert_eq!(chosen.len(), 4);
         let c = |cell: u32| w.val[cell as usize].saturating_sub(w.base);
         assert_eq!(c(12), 1);
         assert_eq!((0..25).map(c).sum::<u32>(), 1);
