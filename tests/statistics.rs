@@ -537,12 +537,58 @@ fn greedy_rollouts_without_noise_take_exactly_the_optimal_steps() {
     }
 }
 
+/// Ties met replaying NSARW walks: `[k][position of the choice among the k]`.
+type Ties = [[u64; 4]; 5];
+
+/// Replays an NSARW `path` on `t`: each step enters a neighbour with the
+/// fewest visits so far (the start counts once). Records where the choice
+/// fell among the tied neighbours and returns the visit counts.
+fn replay_nsarw(t: &Torus, path: &[u32], ties: &mut Ties, what: &str) -> Vec<u32> {
+    let mut count = vec![0u32; t.cells()];
+    count[path[0] as usize] = 1;
+    for w in path.windows(2) {
+        let (c, next) = (w[0], w[1]);
+        let nbs: Vec<u32> = Move::ALL.iter().map(|&m| t.step(c, m)).collect();
+        assert!(nbs.contains(&next), "{what}: not a unit move");
+        let least = nbs.iter().map(|&b| count[b as usize]).min().unwrap();
+        assert_eq!(
+            count[next as usize], least,
+            "{what}: stepped onto a cell visited {} times while a neighbour had {least}",
+            count[next as usize]
+        );
+        let tied: Vec<u32> = nbs
+            .into_iter()
+            .filter(|&b| count[b as usize] == least)
+            .collect();
+        let pos = tied.iter().position(|&b| b == next).unwrap();
+        ties[tied.len()][pos] += 1;
+        count[next as usize] += 1;
+    }
+    count
+}
+
+/// Among k tied neighbours each was chosen with probability 1/k (χ², in
+/// up, right, down, left order), with at least `four_way` 4-way ties seen.
+fn assert_uniform_ties(ties: &Ties, four_way: u64, what: &str) {
+    for (k, row) in ties.iter().enumerate().skip(2) {
+        let obs = &row[..k];
+        if obs.iter().sum::<u64>() < 50 {
+            continue;
+        }
+        let (stat, df) = chi2_merged(obs, &vec![1.0 / k as f64; k]);
+        println!("{what}, {k}-way ties: {obs:?} chi2 {stat:.2} on {df} df");
+        assert!(stat < chi2_crit_1e4(df), "{what}: {k}-way ties {obs:?}");
+    }
+    assert!(
+        ties[4].iter().sum::<u64>() > four_way,
+        "{what}: too few 4-way ties"
+    );
+}
+
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
 fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
-    // Replay standalone NSARW episodes: each step enters a neighbour with
-    // the fewest visits so far (the start counts once), and among k tied
-    // neighbours each is chosen with probability 1/k.
-    let mut ties = [[0u64; 4]; 5]; // ties[k][position of the choice among the k]
+    // Standalone NSARW episodes, replayed.
+    let mut ties = Ties::default();
     let mut steps = 0u64;
     for i in 0..200 {
         let cfg = Config {
@@ -557,28 +603,9 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
         let mut ep = Episode::trial(&cfg, i).unwrap();
         ep.run();
         let t = ep.torus().clone();
-        let mut count = vec![0u32; t.cells()];
         let path = ep.path().to_vec();
-        count[path[0] as usize] = 1;
-        for w in path.windows(2) {
-            let (c, next) = (w[0], w[1]);
-            let nbs: Vec<u32> = Move::ALL.iter().map(|&m| t.step(c, m)).collect();
-            assert!(nbs.contains(&next), "not a unit move");
-            let least = nbs.iter().map(|&b| count[b as usize]).min().unwrap();
-            assert_eq!(
-                count[next as usize], least,
-                "trial {i}: stepped onto a cell visited {} times while a neighbour had {least}",
-                count[next as usize]
-            );
-            let tied: Vec<u32> = nbs
-                .into_iter()
-                .filter(|&b| count[b as usize] == least)
-                .collect();
-            let pos = tied.iter().position(|&b| b == next).unwrap();
-            ties[tied.len()][pos] += 1;
-            count[next as usize] += 1;
-            steps += 1;
-        }
+        let count = replay_nsarw(&t, &path, &mut ties, &format!("trial {i}"));
+        steps += path.len() as u64 - 1;
         let mut scratch = Vec::new();
         assert_eq!(
             ep.counts(Layer::Walker, &mut scratch).unwrap(),
@@ -587,65 +614,29 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
         );
         assert!(ep.status() != Status::Running);
     }
-    // Uniform choice among ties (positions in up, right, down, left order).
-    for (k, row) in ties.iter().enumerate().skip(2) {
-        let obs = &row[..k];
-        let total: u64 = obs.iter().sum();
-        if total < 50 {
-            continue;
-        }
-        let (stat, df) = chi2_merged(obs, &vec![1.0 / k as f64; k]);
-        println!("NSARW {k}-way ties: {obs:?} chi2 {stat:.2} on {df} df");
-        assert!(stat < chi2_crit_1e4(df), "{k}-way ties {obs:?}");
-    }
     println!("NSARW: {steps} steps replayed");
-    assert!(steps > 10_000 && ties[4].iter().sum::<u64>() > 300);
+    assert!(steps > 10_000);
+    assert_uniform_ties(&ties, 300, "NSARW walker");
 }
 
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
 fn nsarw_rollouts_step_to_a_least_visited_neighbour_uniformly() {
-    // The MCTS rollout loop breaks ties its own way (a random order of the
-    // moves drawn ahead): replay rollouts, several on one policy so that
-    // older walks' counts must be forgotten, with the walker's checks.
+    // The MCTS rollout loop draws its tie orders ahead: replay rollouts,
+    // several on one policy so that older walks' counts must be forgotten.
     let t = Torus::new(11).unwrap();
     let mask = vec![0u8; t.cells()];
     let mut policy = Policy::new(PolicyKind::Nsarw, &t, 2.0, 0.2);
     let mut r = rng::stream(701, 0);
-    let mut ties = [[0u64; 4]; 5];
+    let mut ties = Ties::default();
     let mut steps = 0u64;
     for i in 0..200u32 {
         let start = (i * 37) % t.cells() as u32;
         policy.begin(start, start);
         let mut path = vec![start];
         policy.rollout(&t, &mask, &mut r, start, 300, &mut path);
-        let mut count = vec![0u32; t.cells()];
-        count[start as usize] = 1;
-        for w in path.windows(2) {
-            let (c, next) = (w[0], w[1]);
-            let nbs: Vec<u32> = Move::ALL.iter().map(|&m| t.step(c, m)).collect();
-            assert!(nbs.contains(&next), "not a unit move");
-            let least = nbs.iter().map(|&b| count[b as usize]).min().unwrap();
-            assert_eq!(
-                count[next as usize], least,
-                "rollout {i}: not a least-visited neighbour"
-            );
-            let tied: Vec<u32> = nbs
-                .into_iter()
-                .filter(|&b| count[b as usize] == least)
-                .collect();
-            ties[tied.len()][tied.iter().position(|&b| b == next).unwrap()] += 1;
-            count[next as usize] += 1;
-            steps += 1;
-        }
+        replay_nsarw(&t, &path, &mut ties, &format!("rollout {i}"));
+        steps += path.len() as u64 - 1;
     }
-    for (k, row) in ties.iter().enumerate().skip(2) {
-        let obs = &row[..k];
-        if obs.iter().sum::<u64>() < 50 {
-            continue;
-        }
-        let (stat, df) = chi2_merged(obs, &vec![1.0 / k as f64; k]);
-        println!("NSARW rollouts, {k}-way ties: {obs:?} chi2 {stat:.2} on {df} df");
-        assert!(stat < chi2_crit_1e4(df), "{k}-way ties {obs:?}");
-    }
-    assert!(steps > 50_000 && ties[4].iter().sum::<u64>() > 300);
+    assert!(steps > 50_000);
+    assert_uniform_ties(&ties, 300, "NSARW rollouts");
 }
