@@ -76,7 +76,7 @@ fn order(rng: &mut Rng, bits: &mut u64, left: &mut u32) -> usize {
 /// current walk; anything at most `base` was written by an earlier walk and
 /// counts 0. Starting a new walk (every rollout) moves `base` past every
 /// value written, which is O(1) instead of clearing N² counters, and the
-/// count of a neighbour is one load and a saturating subtraction.
+/// count of a neighbour is one load and a `max` with `base`.
 #[derive(Clone, Debug)]
 pub struct Nsarw {
     val: Vec<u32>,
