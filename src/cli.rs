@@ -397,13 +397,19 @@ fn run(m: &ArgMatches) -> Result<(), UsageError> {
     Ok(())
 }
 
+/// The usage error of an exact evaluation refused: a bad configuration
+/// as any other, or why the paths cannot be counted exactly.
+fn exact_usage(e: exact::ExactError) -> UsageError {
+    match e {
+        exact::ExactError::Config(e) => usage(e),
+        e => UsageError(e.to_string()),
+    }
+}
+
 /// `run --exact`: the exact mean of a deterministic searcher.
 fn run_exact(cfg: &Config, json: bool) -> Result<(), UsageError> {
     let t0 = Instant::now();
-    let exact = exact::exact_mean(cfg).map_err(|e| match e {
-        exact::ExactError::Config(e) => usage(e),
-        e => UsageError(e.to_string()),
-    })?;
+    let exact = exact::exact_mean(cfg).map_err(exact_usage)?;
     let seconds = t0.elapsed().as_secs_f64();
     let lower_bound = bound::lower_bound_capped(cfg).map_err(usage)?;
     let mean_over_bound = (lower_bound > 0.0).then(|| exact.mean / lower_bound);
@@ -452,10 +458,7 @@ fn run_blind(
     pool: &rayon::ThreadPool,
     json: bool,
 ) -> Result<(), UsageError> {
-    exact::check_blind(cfg).map_err(|e| match e {
-        exact::ExactError::Config(e) => usage(e),
-        e => UsageError(e.to_string()),
-    })?;
+    exact::check_blind(cfg).map_err(exact_usage)?;
     let t0 = Instant::now();
     let each: Vec<exact::Exact> = with_progress(pool, 0..trials, "trials", |i| {
         exact::blind_mean(cfg, i).expect("the config was validated above")

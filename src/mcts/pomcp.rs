@@ -210,10 +210,9 @@ pub struct BeliefTree {
     plan_at: usize,
     /// The plan's exact return from the root.
     plan_cost: f64,
-    /// Scratch for completions, and the best verified one.
+    /// Scratch: a completion being checked, and the tree line it starts with.
     cand: Vec<u32>,
-    best_cells: Vec<u32>,
-    pwalk: PlanWalk,
+    line: Vec<u32>,
     /// The decision's next loop replays the plan.
     replay: bool,
     /// The move [`Stats::conclude`] chose, which keeps the plan valid.
@@ -306,8 +305,7 @@ impl BeliefTree {
             plan_at: 0,
             plan_cost: f64::INFINITY,
             cand: Vec::new(),
-            best_cells: Vec::new(),
-            pwalk: PlanWalk::new(),
+            line: Vec::new(),
             replay: false,
             planned: None,
         }
@@ -316,6 +314,13 @@ impl BeliefTree {
     /// True while the searcher holds a plan (rollouts follow it).
     fn planning(&self) -> bool {
         self.plan_depth > 0 && self.plan_at < self.plan.len()
+    }
+
+    /// The index in `Move::ALL` of the plan's next move from `cell`, if the
+    /// plan's next cell is a neighbour of it.
+    fn plan_move(&self, torus: &Torus, cell: u32) -> Option<usize> {
+        let next = *self.plan.get(self.plan_at)?;
+        Move::ALL.iter().position(|&m| torus.step(cell, m) == next)
     }
 
     /// The value of a node's mean return under the scale, higher is better.
@@ -656,9 +661,7 @@ impl Stats for BeliefTree {
                 }
             }
             let forced = if self.replay && node == 0 {
-                Move::ALL
-                    .iter()
-                    .position(|&m| env.torus.step(cur.cell, m) == self.plan[self.plan_at])
+                self.plan_move(env.torus, cur.cell)
             } else {
                 None
             };
@@ -705,7 +708,7 @@ impl Stats for BeliefTree {
         // same reference tail, and the returns would not tell moves apart
         // (all of them, with a delta prior far away).
         self.walk.begin_rollout();
-        self.pwalk = PlanWalk::new();
+        let mut pwalk = PlanWalk::new();
         let planning = self.planning();
         let replay = std::mem::take(&mut self.replay);
         let mut cut = false;
@@ -719,8 +722,7 @@ impl Stats for BeliefTree {
             }
             let planned = if planning {
                 let plan = &self.plan[self.plan_at..];
-                self.pwalk
-                    .next_move(env.torus, sensor, belief, &self.cov, plan, cell)
+                pwalk.next_move(env.torus, sensor, belief, &self.cov, plan, cell)
             } else {
                 None
             };
@@ -820,9 +822,7 @@ impl Stats for BeliefTree {
             return None;
         }
         let root = self.nodes[0].cell;
-        let on_plan = Move::ALL
-            .iter()
-            .position(|&m| torus.step(root, m) == self.plan[self.plan_at])?;
+        let on_plan = self.plan_move(torus, root)?;
         let lo = |t: &BeliefTree, i: usize| match t.nodes[0].children[i] {
             NONE => f64::INFINITY,
             k if t.nodes[k as usize].visits == 0 => f64::INFINITY,
@@ -831,7 +831,7 @@ impl Stats for BeliefTree {
         let mut order = [0, 1, 2, 3];
         order.sort_by(|&a, &b| lo(self, a).total_cmp(&lo(self, b)));
         let (mut best, mut chosen, mut adopted) = (self.plan_cost, on_plan, false);
-        let mut line = std::mem::take(&mut self.best_cells);
+        let mut line = std::mem::take(&mut self.line);
         for i in order {
             let l = lo(self, i);
             if !(l < best || (l == best && i != chosen && l.is_finite())) {
@@ -867,7 +867,7 @@ impl Stats for BeliefTree {
                 self.plan_at = 0;
             }
         }
-        self.best_cells = line;
+        self.line = line;
         if adopted {
             self.plan_cost = best;
         }

@@ -138,12 +138,13 @@ impl Nsarw {
             v << 4 | r[i] | i as u64
         };
         let m = (key(0).min(key(1)).min(key(2).min(key(3))) & 3) as usize;
-        let (even, odd) = if m & 1 == 0 {
+        // q[m] by two selects on m's bits, not an indexed load.
+        let (low, high) = if m & 1 == 0 {
             (q[0], q[2])
         } else {
             (q[1], q[3])
         };
-        (m, (if m & 2 == 0 { even } else { odd }) as usize)
+        (m, (if m & 2 == 0 { low } else { high }) as usize)
     }
 
     /// A uniformly random move among the least-visited neighbours.
