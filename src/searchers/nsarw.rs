@@ -70,6 +70,23 @@ fn order(rng: &mut Rng, bits: &mut u64, left: &mut u32) -> usize {
     }
 }
 
+/// [`Nsarw::choose`] over values `val` and base `base`, for the hot loop,
+/// which holds them in locals: a store through the walk's own slice then
+/// cannot alias the struct's fields, so they stay in registers.
+///
+/// # Safety
+/// As [`Nsarw::choose`].
+#[inline(always)]
+unsafe fn choose(val: &[u32], base: u32, q: [u32; 4], k: usize) -> usize {
+    let r = TIE.get_unchecked(k);
+    // Older walks' values (at most `base`) count 0.
+    let key = |i: usize| {
+        let v = (*val.get_unchecked(q[i] as usize)).max(base) as u64;
+        v << 4 | r[i] | i as u64
+    };
+    (key(0).min(key(1)).min(key(2).min(key(3))) & 3) as usize
+}
+
 /// NSARW with its own visit counts.
 ///
 /// One word per cell holds `base + visits` for the cells visited in the
@@ -81,7 +98,7 @@ fn order(rng: &mut Rng, bits: &mut u64, left: &mut u32) -> usize {
 pub struct Nsarw {
     val: Vec<u32>,
     base: u32,
-    /// The largest value written so far.
+    /// At least every value written so far (an upper bound, not the maximum).
     top: u32,
 }
 
@@ -114,64 +131,44 @@ impl Nsarw {
         self.top = self.top.max(*v);
     }
 
-    /// The move to a least-visited neighbour of the cell at table offset
-    /// `p` (4 × the cell), ties broken by the order `TIE[k]`, and the
-    /// neighbour's table offset. The neighbours are loaded once: the next
-    /// offset is selected from them, not loaded again, which keeps the
-    /// walk's chain of dependent loads short.
+    /// The move to a least-visited of the neighbour cells `q` (in
+    /// `Move::ALL` order), ties broken by the order `TIE[k]`.
     ///
     /// # Safety
-    /// `p + 3 < nbr.len()`, every entry of `nbr` is 4 × an index of `val`,
-    /// and `k < 24`.
+    /// Every cell of `q` indexes `val`, and `k < 24`.
     #[inline(always)]
-    unsafe fn choose(&self, nbr: &[u32], p: usize, k: usize) -> (usize, usize) {
-        let r = TIE.get_unchecked(k);
-        let q = [
-            *nbr.get_unchecked(p),
-            *nbr.get_unchecked(p + 1),
-            *nbr.get_unchecked(p + 2),
-            *nbr.get_unchecked(p + 3),
-        ];
-        // Older walks' values (at most `base`) count 0.
-        let key = |i: usize| {
-            let v = (*self.val.get_unchecked(q[i] as usize >> 2)).max(self.base) as u64;
-            v << 4 | r[i] | i as u64
-        };
-        let m = (key(0).min(key(1)).min(key(2).min(key(3))) & 3) as usize;
-        // q[m] by two selects on m's bits, not an indexed load.
-        let (low, high) = if m & 1 == 0 {
-            (q[0], q[2])
-        } else {
-            (q[1], q[3])
-        };
-        (m, (if m & 2 == 0 { low } else { high }) as usize)
+    unsafe fn choose(&self, q: [u32; 4], k: usize) -> usize {
+        choose(&self.val, self.base, q, k)
     }
 
     /// A uniformly random move among the least-visited neighbours.
     ///
     /// # Panics
-    /// If `cell` or a neighbour is outside the walk's lattice.
+    /// If `cell` is outside the walk's lattice, or the walk was made for a
+    /// smaller one.
     pub fn next_move(&mut self, torus: &Torus, rng: &mut Rng, cell: u32) -> Move {
-        let nbr = torus.neighbours();
-        let p = 4 * cell as usize;
-        assert!(p + 3 < nbr.len() && self.val.len() >= torus.cells());
+        assert!((cell as usize) < torus.cells() && self.val.len() >= torus.cells());
         let (mut bits, mut left) = (0, 0);
         let k = order(rng, &mut bits, &mut left);
-        // SAFETY: asserted just above; entries are 4 × a cell < cells(); k < 24.
-        let (m, _) = unsafe { self.choose(nbr, p, k) };
+        let at = At::new(torus, cell);
+        // SAFETY: asserted just above (neighbours of a cell are cells); k < 24.
+        let m = unsafe { self.choose(at.around(torus.n()).cells(), k) };
         Move::from_index(m as u32)
     }
 
     /// Walks from `start` until `mask` marks the cell or `cap` moves,
     /// continuing the walk begun by [`Nsarw::begin`].
     ///
-    /// The hot loop: the neighbour table, one word per neighbour, the tie
-    /// broken by a random order of the moves from 16 bits of a 64-bit draw
-    /// (off the walk's chain of loads), no allocation.
+    /// The hot loop: the neighbours computed from the column and row by
+    /// compare-and-select (no table load on the walk's chain of dependent
+    /// loads), the tie broken by a random order of the moves from 16 bits
+    /// of a 64-bit draw (off that chain too), no allocation.
     ///
     /// # Panics
     /// If `mask` or the counts are shorter than the lattice.
-    #[inline]
+    // Not inlined: in its callers' large bodies the loop's dozen live
+    // values were spilled to the stack, loads on the walk's chain.
+    #[inline(never)]
     pub fn rollout<V: Visit>(
         &mut self,
         torus: &Torus,
@@ -181,7 +178,6 @@ impl Nsarw {
         cap: u32,
         visit: &mut V,
     ) -> Outcome {
-        let nbr = torus.neighbours();
         let cells = torus.cells();
         assert!(mask.len() >= cells && self.val.len() >= cells && (start as usize) < cells);
         if mask[start as usize] != 0 {
@@ -190,34 +186,51 @@ impl Nsarw {
                 detected: true,
             };
         }
-        let mut p = 4 * start as usize;
+        let n = torus.n();
+        let mut at = At::new(torus, start);
         let mut bits = 0u64;
         let mut left = 0u32;
-        for steps in 1..=cap {
-            // SAFETY: `p / 4` starts in range and every table entry is
-            // 4 × a cell index < cells() ≤ mask.len(), val.len() (asserted
-            // above), so `p + 3 < nbr.len()` and `p >> 2` indexes both.
+        let base = self.base;
+        let val = &mut self.val[..];
+        // A local copy of the generator, written back after the walk, so
+        // its state stays in registers rather than going back to memory at
+        // every refill.
+        let mut r = rng.clone();
+        let mut out = Outcome {
+            steps: cap,
+            detected: false,
+        };
+        // A plain counter: `1..=cap` keeps an extra exhaustion flag live.
+        let mut steps = 0;
+        while steps < cap {
+            steps += 1;
+            // SAFETY: `at` starts on the lattice and `At::around` keeps it
+            // there, so every cell is < cells() ≤ mask.len(), val.len()
+            // (asserted above); k < 24.
             unsafe {
-                let k = order(rng, &mut bits, &mut left);
-                p = self.choose(nbr, p, k).1;
-                core::hint::assert_unchecked(p % 4 == 0);
-                let cell = p >> 2;
-                let v = self.val.get_unchecked_mut(cell);
-                *v = (*v).max(self.base) + 1;
-                self.top = self.top.max(*v);
+                let k = order(&mut r, &mut bits, &mut left);
+                let around = at.around(n);
+                let m = choose(val, base, around.cells(), k);
+                at = around.go(m);
+                let cell = (at.row + at.x) as usize;
+                let v = val.get_unchecked_mut(cell);
+                *v = (*v).max(base) + 1;
                 visit.visit(cell as u32, steps);
                 if *mask.get_unchecked(cell) != 0 {
-                    return Outcome {
+                    out = Outcome {
                         steps,
                         detected: true,
                     };
+                    break;
                 }
             }
         }
-        Outcome {
-            steps: cap,
-            detected: false,
-        }
+        *rng = r;
+        // Each step adds 1 to one value, so none exceeds this: an upper
+        // bound is all `begin` needs, and tracking the maximum would hold a
+        // register in the loop.
+        self.top = self.top.max(base) + out.steps;
+        out
     }
 
     /// Per-cell values of the walk, `y * n + x`: the visit counts of the
@@ -225,6 +238,83 @@ impl Nsarw {
     /// walks, offset by where the current walk's counts start.
     pub fn counts(&self) -> &[u32] {
         &self.val
+    }
+}
+
+/// Where a walk stands: column `x` and the row's first cell `row` (y · N),
+/// from which the four neighbours follow by compare-and-select.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct At {
+    x: u32,
+    row: u32,
+}
+
+/// The rows above and below and the columns right and left of an [`At`].
+#[derive(Clone, Copy)]
+struct Around {
+    at: At,
+    up: u32,
+    down: u32,
+    right: u32,
+    left: u32,
+}
+
+impl At {
+    fn new(torus: &Torus, cell: u32) -> At {
+        let (x, y) = torus.xy(cell);
+        At {
+            x,
+            row: y * torus.n(),
+        }
+    }
+
+    /// The neighbouring rows and columns on an `n` × `n` torus.
+    #[inline(always)]
+    fn around(self, n: u32) -> Around {
+        let last_row = n * n - n;
+        Around {
+            at: self,
+            up: if self.row == 0 {
+                last_row
+            } else {
+                self.row - n
+            },
+            down: if self.row == last_row {
+                0
+            } else {
+                self.row + n
+            },
+            right: if self.x + 1 == n { 0 } else { self.x + 1 },
+            left: if self.x == 0 { n - 1 } else { self.x - 1 },
+        }
+    }
+}
+
+impl Around {
+    /// The four neighbour cells, in `Move::ALL` order.
+    #[inline(always)]
+    fn cells(&self) -> [u32; 4] {
+        let At { x, row } = self.at;
+        [
+            self.up + x,
+            row + self.right,
+            self.down + x,
+            row + self.left,
+        ]
+    }
+
+    /// Where move `m` (index in `Move::ALL`) leads: selects on m's bits, not
+    /// an indexed load, which would put a store and a load on the walk's
+    /// chain.
+    #[inline(always)]
+    fn go(&self, m: usize) -> At {
+        let (odd, high) = (m & 1 != 0, m & 2 != 0);
+        let side = if high { self.left } else { self.right };
+        let vertical = if high { self.down } else { self.up };
+        At {
+            x: if odd { side } else { self.at.x },
+            row: if odd { self.at.row } else { vertical },
+        }
     }
 }
 
@@ -273,6 +363,26 @@ mod tests {
     }
 
     #[test]
+    fn neighbours_by_compare_and_select_match_the_lattice() {
+        // Every cell of small and odd lattices, including each wrap.
+        for n in [3, 4, 5, 8] {
+            let t = Torus::new(n).unwrap();
+            for c in 0..t.cells() as u32 {
+                let around = At::new(&t, c).around(n);
+                for m in Move::ALL {
+                    let want = t.step(c, m);
+                    assert_eq!(around.cells()[m as usize], want, "n {n} cell {c} {m:?}");
+                    assert_eq!(
+                        around.go(m as usize),
+                        At::new(&t, want),
+                        "n {n} cell {c} {m:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn a_new_walk_forgets_the_old_one() {
         let t = Torus::new(5).unwrap();
         let mut w = Nsarw::new(t.cells());
@@ -284,10 +394,9 @@ mod tests {
         // Only the start has been visited in the new walk: all four
         // neighbours of the start are tied, whatever the old walk left, so
         // each is chosen under some order.
-        let p = 4 * 12;
-        let chosen: std::collections::HashSet<usize> = (0..24)
-            .map(|k| unsafe { w.choose(t.neighbours(), p, k) }.0)
-            .collect();
+        let q = At::new(&t, 12).around(t.n()).cells();
+        let chosen: std::collections::HashSet<usize> =
+            (0..24).map(|k| unsafe { w.choose(q, k) }).collect();
         assert_eq!(chosen.len(), 4);
         let c = |cell: u32| w.val[cell as usize].saturating_sub(w.base);
         assert_eq!(c(12), 1);
