@@ -96,6 +96,10 @@ pub struct Config {
     pub horizon: u32,
     /// Rollout improvement: the base policy it completes searches with.
     pub base: Base,
+    /// The beam planner: partial paths kept at each depth.
+    pub beam_width: u32,
+    /// The beam planner: moves planned by beam search.
+    pub beam_depth: u32,
     /// The sweep's pattern.
     pub sweep_pattern: SweepPattern,
     /// The seed: trial i of a batch draws from streams derived from (seed, i).
@@ -849,6 +853,32 @@ pub static PARAMS: &[Param] = &[
         set: |c, v| c.base = Base::parse(name(v)).unwrap_or(c.base),
     },
     Param {
+        key: "beam_width",
+        kind: Kind::Int {
+            min: 1,
+            max: searchers::MAX_BEAM as u64,
+        },
+        default: Value::Int(searchers::DEFAULT_BEAM_WIDTH as u64),
+        help: "beam planner: partial paths kept at each depth (at most 2 ending on one cell)",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.beam_width as u64),
+        set: |c, v| c.beam_width = u32_of(v),
+    },
+    Param {
+        key: "beam_depth",
+        kind: Kind::Int {
+            min: 1,
+            max: searchers::MAX_BEAM as u64,
+        },
+        default: Value::Int(searchers::DEFAULT_BEAM_DEPTH as u64),
+        help: "beam planner: moves planned by beam search before the horizon rule finishes the path",
+        applies: Applies::Searcher,
+        aliases: &[],
+        get: |c| Value::Int(c.beam_depth as u64),
+        set: |c, v| c.beam_depth = u32_of(v),
+    },
+    Param {
         key: "sweep_pattern",
         kind: Kind::Choice(|| SweepPattern::NAMES.to_vec()),
         default: Value::Name(Cow::Borrowed("lawnmower")),
@@ -914,6 +944,8 @@ impl Default for Config {
             keep_traces: 0,
             horizon: 0,
             base: Base::Cover,
+            beam_width: 0,
+            beam_depth: 0,
             sweep_pattern: SweepPattern::Lawnmower,
             seed: 0,
         };

@@ -59,6 +59,18 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--horizon must be an integer in 1..=9, got 12",
         ),
         (
+            &["run", "--searcher", "beam", "--beam-width", "0"],
+            "--beam-width must be an integer in 1..=400, got 0",
+        ),
+        (
+            &["run", "--searcher", "beam", "--beam-depth", "401"],
+            "--beam-depth must be an integer in 1..=400, got 401",
+        ),
+        (
+            &["run", "--searcher", "beam", "--beam-depth", "x"],
+            "--beam-depth must be an integer in 1..=400, got x",
+        ),
+        (
             &["run", "--variant", "pomcp", "--pomcp-depth", "0"],
             "--pomcp-depth must be an integer in 1..=100000, got 0",
         ),
@@ -80,11 +92,11 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
         ),
         (
             &["run", "--searcher", "rw", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve), got rw",
+            "--exact needs a deterministic searcher (sweep, horizon, improve, beam), got rw",
         ),
         (
             &["run", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve), got mcts",
+            "--exact needs a deterministic searcher (sweep, horizon, improve, beam), got mcts",
         ),
         (
             &["run", "--searcher", "sweep", "--known", "--exact"],
@@ -96,7 +108,7 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
         ),
         (
             &["run", "--searcher", "bogus"],
-            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, got bogus",
+            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, beam, got bogus",
         ),
         (
             &["run", "--loops", "5", "--decision-ms", "2"],

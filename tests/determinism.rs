@@ -170,6 +170,16 @@ fn cases() -> Vec<(&'static str, Config)> {
             },
         ),
         (
+            "beam",
+            Config {
+                searcher: searcher("beam"),
+                horizon: 3,
+                beam_width: 8,
+                beam_depth: 12,
+                ..small()
+            },
+        ),
+        (
             // The plan's rollouts rejoin it, cut after 3 steps.
             "pomcp plan cut",
             Config {
@@ -201,8 +211,9 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// pins the cut, which the small lattice of the other case never reaches.
 /// When the belief MCTS started from a plan (`pomcp_plan`, issue 11) the
 /// `pomcp` case was re-pinned; `pomcp cut` sets `pomcp_plan` 0 and keeps
-/// its value, and `pomcp plan cut` pins the plan with the cut.
-const PINNED: [u64; 18] = [
+/// its value, and `pomcp plan cut` pins the plan with the cut. `beam` was
+/// added with the beam planner (issue 11).
+const PINNED: [u64; 19] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -220,6 +231,7 @@ const PINNED: [u64; 18] = [
     0x525ec88472ced1ec,
     0xe66447472545f040,
     0x5a568ac79c3787d6,
+    0x6be7bf1f2b5dfc48,
     0x242d9878f2a7c99f,
 ];
 

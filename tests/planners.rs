@@ -30,6 +30,14 @@ fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
     let mut v = vec![
         ("sweep".to_string(), planner("sweep", n, prior, sigma)),
         ("horizon".to_string(), planner("horizon", n, prior, sigma)),
+        (
+            "beam".to_string(),
+            Config {
+                beam_width: 12,
+                beam_depth: 30,
+                ..planner("beam", n, prior, sigma)
+            },
+        ),
     ];
     for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
         v.push((
@@ -148,6 +156,55 @@ fn rollout_improvement_is_never_worse_than_its_base() {
             );
         }
     }
+}
+
+/// The beam planner is never worse than the horizon rule's own path (the
+/// rollout improver's `horizon` base), exactly, and beats it somewhere.
+#[test]
+fn beam_is_never_worse_than_the_horizon_rule() {
+    let mut gained = 0.0;
+    for (n, prior, sigma) in [
+        (12, PriorKind::Gaussian, 2.5),
+        (16, PriorKind::Gaussian, 4.0),
+        (16, PriorKind::Uniform, 0.0),
+        (10, PriorKind::Gaussian, 1.0),
+        (16, PriorKind::Delta, 0.0),
+    ] {
+        for (width, depth) in [(1, 1), (10, 40), (40, 80)] {
+            let cfg = Config {
+                beam_width: width,
+                beam_depth: depth,
+                ..planner("beam", n, prior, sigma)
+            };
+            let beam = exact_mean(&cfg).unwrap().mean;
+            let rule = base_mean(&cfg, Base::Horizon).unwrap();
+            println!("n={n} {prior} σ={sigma} width {width} depth {depth}: rule {rule:.4} → beam {beam:.4}");
+            assert!(
+                beam <= rule + 1e-9 * rule,
+                "n={n} {prior} width {width}: beam {beam} > rule {rule}"
+            );
+            gained += rule - beam;
+        }
+    }
+    assert!(
+        gained > 0.5,
+        "the beam never improved on the rule ({gained})"
+    );
+}
+
+/// Issue 11's goal for the best searcher at σ = 2.5 (N = 40, start (1,1)):
+/// the beam planner at its defaults is at most 50, exactly (49.79).
+#[test]
+fn beam_meets_the_sigma_2_5_goal() {
+    let cfg = Config {
+        searcher: searcher("beam"),
+        sigma: 2.5,
+        ..Config::default()
+    };
+    let e = exact_mean(&cfg).unwrap();
+    println!("beam σ = 2.5: {e:?}");
+    assert!(e.mean <= 50.0, "{e:?}");
+    assert_eq!(e.capped_probability, 0.0);
 }
 
 /// On N = 3 and 4: lower bound ≤ DP optimum ≤ each planner's exact mean.

@@ -541,7 +541,8 @@ mod tests {
                 "NSARW",
                 "Sweep",
                 "Receding horizon",
-                "Rollout improvement"
+                "Rollout improvement",
+                "Beam planner"
             ]
         );
         // The unit tests' shuttle searcher is registered here but left out.

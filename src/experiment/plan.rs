@@ -425,12 +425,12 @@ mod tests {
         assert_eq!(p.points[1].config.loops, 200);
         assert_eq!(c.final_rule.name(), "uct", "the preset applies");
         let p = plan(r#"{"name":"sigma-sweep","seed":"9"}"#).unwrap();
-        assert_eq!(p.points.len(), 8 * 11);
+        assert_eq!(p.points.len(), 9 * 11);
         assert_eq!(p.header.series[0], "MCTS, RW rollouts");
         let last = &p.points[p.points.len() - 1].config;
         assert_eq!(
             (last.searcher.name(), last.sigma, last.seed),
-            ("improve", 10.0, 9)
+            ("beam", 10.0, 9)
         );
         assert_eq!(p.points[11].config.rollout.name(), "levy");
     }
@@ -480,6 +480,8 @@ mod tests {
                 "searcher" => (r#""rv":"1""#, "nsarw".into()),
                 "horizon" => (r#""searcher":"horizon""#, "3".into()),
                 "base" => (r#""searcher":"improve""#, "sweep".into()),
+                "beam_width" => (r#""searcher":"beam""#, "7".into()),
+                "beam_depth" => (r#""searcher":"beam""#, "9".into()),
                 "sweep_pattern" => (r#""searcher":"sweep""#, "helix".into()),
                 _ => (r#""searcher":"mcts""#, p.default.text()),
             };

@@ -9,6 +9,7 @@
 //! The walks here (random walk, Lévy flight, NSARW, greedy) are also the
 //! MCTS rollout policies ([`Policy`]).
 
+mod beam;
 mod greedy;
 mod horizon;
 mod improve;
@@ -17,8 +18,10 @@ mod nsarw;
 pub mod plan;
 mod policy;
 mod random_walk;
+mod refine;
 mod sweep;
 
+pub use beam::{Beam, DEFAULT_BEAM_DEPTH, DEFAULT_BEAM_WIDTH, MAX_BEAM};
 pub use greedy::Greedy;
 pub use horizon::{completion, Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON};
 pub use improve::{base_mean, Base, Improve};
@@ -154,6 +157,7 @@ pub static REGISTRY: &[&SearcherInfo] = &[
     &sweep::INFO,
     &horizon::INFO,
     &improve::INFO,
+    &beam::INFO,
     #[cfg(test)]
     &tests::STAND_STILL,
 ];
