@@ -15,9 +15,8 @@
 //!    - no cell is seen before its distance from the searcher less the
 //!      sensor's reach.
 //!
-//!    Both are computed over the heaviest `front · beam_depth` uncovered
-//!    cells only, which keeps them lower bounds and their cost independent
-//!    of N. The `beam_width` best partial paths survive each depth, at most
+//!    Both are computed over the heaviest `4 · front · beam_depth` cells
+//!    only, which keeps them lower bounds and their cost independent of N. The `beam_width` best partial paths survive each depth, at most
 //!    [`PER_CELL`] ending on one cell, so that the beam does not fill with
 //!    near-copies.
 //! 2. The best partial path is **finished by the horizon rule** (depth
@@ -48,17 +47,13 @@ use std::sync::Mutex;
 pub const DEFAULT_BEAM_WIDTH: u32 = 100;
 /// The default beam depth, in moves.
 pub const DEFAULT_BEAM_DEPTH: u32 = 200;
-/// The largest beam width and depth: a plan is then about 400 · 4 · 400
-/// partial paths, a few seconds at any N.
+/// The largest beam width and depth: a beam of 400 · 4 · 400 partial
+/// paths, whose bounds cost the same at any N.
 pub const MAX_BEAM: u32 = 400;
 /// Most partial paths that end on one cell at each depth.
 pub const PER_CELL: u8 = 2;
 /// Refinement tries changes spanning fewer moves than this.
 const WINDOW: u32 = 40;
-/// Partial paths the beam hands on to be finished and counted exactly.
-const FINISHED: usize = 1;
-/// Finished paths refined (the cheapest, besides the horizon rule's).
-const REFINED: usize = 2;
 /// Plans kept for the process.
 const KEPT: usize = 8;
 
@@ -184,8 +179,8 @@ impl Beam {
             &mut rule,
         );
         rule.insert(0, pos);
-        // The beam's paths, each finished by the rule and counted exactly.
-        let heads = search(
+        // The beam's path, finished by the rule.
+        let head = search(
             torus,
             sensor,
             &key.mass,
@@ -193,89 +188,44 @@ impl Beam {
             self.width as usize,
             self.depth as usize,
         );
-        let mut finished: Vec<(f64, Vec<u32>)> = Vec::with_capacity(heads.len());
-        let mut tail = Vec::new();
-        for head in heads {
-            let mut after = belief.clone();
-            for &c in &head {
-                after.search_around(sensor, c);
-            }
-            let end = head.last().copied().unwrap_or(pos);
-            let last = match head.len() {
-                0 => self.last,
-                1 => Some(move_between(torus, pos, end)),
-                k => Some(move_between(torus, head[k - 2], end)),
-            };
-            completion(
-                &mut self.look,
-                torus,
-                sensor,
-                &after,
-                &mut self.cov,
-                end,
-                last,
-                cap.saturating_sub(head.len()),
-                &mut tail,
-            );
-            let mut path = Vec::with_capacity(1 + head.len() + tail.len());
-            path.push(pos);
-            path.extend_from_slice(&head);
-            path.extend_from_slice(&tail);
-            let cost = path_cost(torus, sensor, &key.mass, self.step_cap, &path);
-            finished.push((cost, path));
+        let mut after = belief.clone();
+        for &c in &head {
+            after.search_around(sensor, c);
         }
-        finished.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let end = head.last().copied().unwrap_or(pos);
+        let last = match head.len() {
+            0 => self.last,
+            1 => Some(move_between(torus, pos, end)),
+            k => Some(move_between(torus, head[k - 2], end)),
+        };
+        let mut tail = Vec::new();
+        completion(
+            &mut self.look,
+            torus,
+            sensor,
+            &after,
+            &mut self.cov,
+            end,
+            last,
+            cap.saturating_sub(head.len()),
+            &mut tail,
+        );
+        let mut beam = Vec::with_capacity(1 + head.len() + tail.len());
+        beam.push(pos);
+        beam.extend_from_slice(&head);
+        beam.extend_from_slice(&tail);
         let mut refiner = Refiner::default();
         let span = 2 * self.depth as usize;
-        let mut best = refiner
-            .refine(
-                torus,
-                sensor,
-                &key.mass,
-                self.step_cap,
-                WINDOW,
-                span,
-                &mut rule,
-            )
-            .after;
-        let mut plan = rule;
-        for (_, mut path) in finished.into_iter().take(REFINED) {
-            let cost = refiner
-                .refine(
-                    torus,
-                    sensor,
-                    &key.mass,
-                    self.step_cap,
-                    WINDOW,
-                    span,
-                    &mut path,
-                )
-                .after;
-            if cost < best {
-                best = cost;
-                plan = path;
-            }
-        }
+        let (m, c) = (&key.mass, self.step_cap);
+        let by_rule = refiner.refine(torus, sensor, m, c, WINDOW, span, &mut rule);
+        let by_beam = refiner.refine(torus, sensor, m, c, WINDOW, span, &mut beam);
+        let plan = if by_beam.after < by_rule.after {
+            beam
+        } else {
+            rule
+        };
         plan[1..].to_vec()
     }
-}
-
-/// `Σ_c m(c) · min(τ(c), cap)` of `path` (as [`Refiner::refine`] counts).
-fn path_cost(torus: &Torus, sensor: &Sensor, mass: &[f64], cap: u32, path: &[u32]) -> f64 {
-    let mut first = vec![u32::MAX; torus.cells()];
-    for (t, &p) in path.iter().enumerate() {
-        for c in sensor.around(p) {
-            let f = &mut first[c as usize];
-            *f = (*f).min(t as u32);
-        }
-    }
-    let mut s = crate::stats::Sum::default();
-    for (&m, &t) in mass.iter().zip(&first) {
-        if m > 0.0 {
-            s.add(m * t.min(cap) as f64);
-        }
-    }
-    s.value()
 }
 
 /// The move from `a` to its neighbour `b`.
@@ -325,8 +275,8 @@ fn zobrist_pos(c: u32) -> u64 {
     splitmix64(c as u64 ^ 0xA5A5_5A5A_0F0F_F0F0)
 }
 
-/// The beam search: the [`FINISHED`] best partial paths from `pos` over
-/// `mass` (0 on searched cells), best first, as the cells they enter.
+/// The beam search: the best partial path from `pos` over `mass` (0 on
+/// searched cells), as the cells it enters.
 fn search(
     torus: &Torus,
     sensor: &Sensor,
@@ -334,7 +284,7 @@ fn search(
     pos: u32,
     width: usize,
     depth: usize,
-) -> Vec<Vec<u32>> {
+) -> Vec<u32> {
     let cells = torus.cells();
     let words = cells.div_ceil(64);
     let (front, reach) = front_and_reach(sensor);
@@ -454,20 +404,14 @@ fn search(
         std::mem::swap(&mut nodes, &mut next_nodes);
         std::mem::swap(&mut arena, &mut next_arena);
     }
-    nodes
-        .iter()
-        .take(FINISHED)
-        .map(|n| {
-            let mut path = Vec::new();
-            let mut h = n.hist;
-            while h != usize::MAX {
-                path.push(hist[h].1);
-                h = hist[h].0;
-            }
-            path.reverse();
-            path
-        })
-        .collect()
+    let mut path = Vec::new();
+    let mut h = nodes[0].hist;
+    while h != usize::MAX {
+        path.push(hist[h].1);
+        h = hist[h].0;
+    }
+    path.reverse();
+    path
 }
 
 /// The most new cells one move can cover, and the sensor's ℓ1 reach.
