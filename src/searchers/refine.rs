@@ -357,6 +357,16 @@ mod tests {
     use crate::bound;
     use crate::config::Config;
 
+    /// The game of the default configuration with `settings`.
+    fn game(settings: &[(&str, &str)]) -> (Config, crate::config::Game) {
+        let mut cfg = Config::default();
+        for (k, v) in settings {
+            cfg.set(k, v).unwrap();
+        }
+        let g = cfg.game().unwrap();
+        (cfg, g)
+    }
+
     /// A path from `start` along `moves`.
     fn walk(t: &Torus, start: u32, moves: &[Move]) -> Vec<u32> {
         let mut p = vec![start];
@@ -371,10 +381,7 @@ mod tests {
         // A lawnmower with wasted wiggles over a 12-torus, Gaussian prior:
         // the refiner's totals must equal `path_mean` of the paths before
         // and after (they cover everything, so nothing is capped).
-        let mut cfg = Config::default();
-        cfg.set("n", "12").unwrap();
-        cfg.set("sigma", "2").unwrap();
-        let g = cfg.game().unwrap();
+        let (cfg, g) = game(&[("n", "12"), ("sigma", "2")]);
         let mut moves = Vec::new();
         for row in 0..4 {
             let along = if row % 2 == 0 {
@@ -433,10 +440,7 @@ mod tests {
         // Only the first 10 moves change; a cell the tail sees first still
         // counts at the tail's time (a wrong tail time would change `after`
         // against `path_mean`).
-        let mut cfg = Config::default();
-        cfg.set("n", "9").unwrap();
-        cfg.set("prior", "uniform").unwrap();
-        let g = cfg.game().unwrap();
+        let (cfg, g) = game(&[("n", "9"), ("prior", "uniform")]);
         // Wiggles, then a lawnmower that covers the whole 9-torus.
         let mut moves: Vec<Move> = [Move::Right, Move::Up, Move::Down]
             .into_iter()
