@@ -166,8 +166,9 @@ impl Nsarw {
     ///
     /// # Panics
     /// If `mask` or the counts are shorter than the lattice.
-    // Not inlined: in its callers' large bodies the loop's dozen live
-    // values were spilled to the stack, loads on the walk's chain.
+    // Not inlined, so the loop's registers are allocated for it alone:
+    // inlined into the policies' large rollout dispatch, more of its live
+    // values were spilled to the stack.
     #[inline(never)]
     pub fn rollout<V: Visit>(
         &mut self,
