@@ -70,12 +70,14 @@ fn order(rng: &mut Rng, bits: &mut u64, left: &mut u32) -> usize {
     }
 }
 
-/// [`Nsarw::choose`] over values `val` and base `base`, for the hot loop,
-/// which holds them in locals: a store through the walk's own slice then
-/// cannot alias the struct's fields, so they stay in registers.
+/// The move to a least-visited of the neighbour cells `q` (in
+/// `Move::ALL` order) under visit values `val` and base `base`, ties broken
+/// by the order `TIE[k]`. Free of the struct so the hot loop can pass its
+/// locals: a store through the walk's own slice then cannot alias the
+/// struct's fields, so they stay in registers.
 ///
 /// # Safety
-/// As [`Nsarw::choose`].
+/// Every cell of `q` indexes `val`, and `k < 24`.
 #[inline(always)]
 unsafe fn choose(val: &[u32], base: u32, q: [u32; 4], k: usize) -> usize {
     let r = TIE.get_unchecked(k);
@@ -131,16 +133,6 @@ impl Nsarw {
         self.top = self.top.max(*v);
     }
 
-    /// The move to a least-visited of the neighbour cells `q` (in
-    /// `Move::ALL` order), ties broken by the order `TIE[k]`.
-    ///
-    /// # Safety
-    /// Every cell of `q` indexes `val`, and `k < 24`.
-    #[inline(always)]
-    unsafe fn choose(&self, q: [u32; 4], k: usize) -> usize {
-        choose(&self.val, self.base, q, k)
-    }
-
     /// A uniformly random move among the least-visited neighbours.
     ///
     /// # Panics
@@ -152,7 +144,7 @@ impl Nsarw {
         let k = order(rng, &mut bits, &mut left);
         let at = At::new(torus, cell);
         // SAFETY: asserted just above (neighbours of a cell are cells); k < 24.
-        let m = unsafe { self.choose(at.around(torus.n()).cells(), k) };
+        let m = unsafe { choose(&self.val, self.base, at.around(torus.n()).cells(), k) };
         Move::from_index(m as u32)
     }
 
@@ -396,8 +388,9 @@ mod tests {
         // neighbours of the start are tied, whatever the old walk left, so
         // each is chosen under some order.
         let q = At::new(&t, 12).around(t.n()).cells();
-        let chosen: std::collections::HashSet<usize> =
-            (0..24).map(|k| unsafe { w.choose(q, k) }).collect();
+        let chosen: std::collections::HashSet<usize> = (0..24)
+            .map(|k| unsafe { choose(&w.val, w.base, q, k) })
+            .collect();
         assert_eq!(chosen.len(), 4);
         let c = |cell: u32| w.val[cell as usize].saturating_sub(w.base);
         assert_eq!(c(12), 1);
