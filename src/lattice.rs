@@ -145,6 +145,13 @@ impl Torus {
         self.nbr[(cell * 4 + m as u32) as usize] >> 2
     }
 
+    /// The move from `cell` to its neighbour `to` (`None` when `to` is not a
+    /// neighbour).
+    #[inline]
+    pub fn move_to(&self, cell: u32, to: u32) -> Option<Move> {
+        Move::ALL.into_iter().find(|&m| self.step(cell, m) == to)
+    }
+
     /// The cell at 0-based `(x, y)`, wrapping any integers onto the torus.
     #[inline]
     pub fn cell(&self, x: i64, y: i64) -> u32 {

@@ -320,7 +320,7 @@ impl BeliefTree {
     /// plan's next cell is a neighbour of it.
     fn plan_move(&self, torus: &Torus, cell: u32) -> Option<usize> {
         let next = *self.plan.get(self.plan_at)?;
-        Move::ALL.iter().position(|&m| torus.step(cell, m) == next)
+        torus.move_to(cell, next).map(|m| m as usize)
     }
 
     /// The value of a node's mean return under the scale, higher is better.

@@ -195,8 +195,8 @@ impl Beam {
         let end = head.last().copied().unwrap_or(pos);
         let last = match head.len() {
             0 => self.last,
-            1 => Some(move_between(torus, pos, end)),
-            k => Some(move_between(torus, head[k - 2], end)),
+            1 => torus.move_to(pos, end),
+            k => torus.move_to(head[k - 2], end),
         };
         let mut tail = Vec::new();
         completion(
@@ -226,14 +226,6 @@ impl Beam {
         };
         plan[1..].to_vec()
     }
-}
-
-/// The move from `a` to its neighbour `b`.
-fn move_between(torus: &Torus, a: u32, b: u32) -> Move {
-    Move::ALL
-        .into_iter()
-        .find(|&m| torus.step(a, m) == b)
-        .unwrap_or(Move::Right)
 }
 
 /// A partial path in the beam.
@@ -484,7 +476,7 @@ impl Searcher for Beam {
             self.make(w.torus, w.sensor, w.belief, w.pos);
         }
         if let Some(&c) = self.plan.get(self.next) {
-            return Some(move_between(w.torus, w.pos, c));
+            return Some(w.torus.move_to(w.pos, c).unwrap_or(Move::Right));
         }
         // The plan covered every cell with mass (only a step cap or a
         // target the prior ruled out leaves the searcher here).

@@ -312,10 +312,7 @@ impl Searcher for Improve {
             self.adopt_best();
         }
         let m = match self.incumbent.get(self.inc_at) {
-            Some(&q) => Move::ALL
-                .into_iter()
-                .find(|&m| torus.step(pos, m) == q)
-                .unwrap_or(Move::Up),
+            Some(&q) => torus.move_to(pos, q).unwrap_or(Move::Up),
             // Nothing left to find (or no move counts before the cap): keep going.
             None => self.last.unwrap_or(Move::Right),
         };

@@ -132,11 +132,7 @@ impl Searcher for Sweep {
             sweep_path(w.torus, w.sensor, w.pos, self.pattern, &mut self.path);
         }
         let to = self.path.get(self.next).copied().unwrap_or(w.pos);
-        let m = Move::ALL
-            .into_iter()
-            .find(|&m| w.torus.step(w.pos, m) == to)
-            .unwrap_or(Move::Right);
-        Some(m)
+        Some(w.torus.move_to(w.pos, to).unwrap_or(Move::Right))
     }
 
     fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {
