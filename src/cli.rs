@@ -278,7 +278,7 @@ fn bench_command() -> Command {
                 .long("moves")
                 .action(ArgAction::SetTrue)
                 .conflicts_with("episode")
-                .help("instead of the suite: the cost per real move of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8"),
+                .help("instead of the suite: the cost per real move of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8, and the time of each slice of a plan made in slices (beam)"),
         )
         .arg(
             Arg::new("episode")
@@ -936,10 +936,50 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
 /// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move.
 fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     use torus_search::bench::{move_cases, MoveRunner};
+    // A planner that makes its plan in slices: each call of one slice (the
+    // page's worker asks for one at a time), timed over trial 0's plan.
+    // First, before the moves below keep that plan for the process.
+    let mut slices = Vec::new();
+    if !json {
+        out!(
+            "{:<16}{:>6}{:>10}{:>14}{:>14}",
+            "plan slices",
+            "N",
+            "slices",
+            "median ms",
+            "longest ms"
+        );
+    }
+    for n in [40, 256] {
+        for (label, cfg) in move_cases(n) {
+            let mut ep = torus_search::episode::Episode::trial(&cfg, 0).map_err(usage)?;
+            let mut ms = Vec::new();
+            loop {
+                let t = Instant::now();
+                let moved = ep.step_loops(1);
+                ms.push(1e3 * t.elapsed().as_secs_f64());
+                if moved || ep.planning().is_none() {
+                    break;
+                }
+            }
+            if ms.len() < 2 {
+                continue;
+            }
+            ms.sort_by(f64::total_cmp);
+            let (median, longest) = (ms[ms.len() / 2], ms[ms.len() - 1]);
+            if !json {
+                out!(
+                    "{label:<16}{n:>6}{:>10}{median:>14.3}{longest:>14.3}",
+                    ms.len()
+                );
+            }
+            slices.push(serde_json::json!({ "searcher": label, "n": n, "slices": ms.len(), "median_ms": median, "longest_ms": longest }));
+        }
+    }
     let mut rows = Vec::new();
     if !json {
         out!(
-            "{:<16}{:>6}{:>14}{:>10}",
+            "\n{:<16}{:>6}{:>14}{:>10}",
             "searcher",
             "N",
             "ms per move",
@@ -967,7 +1007,7 @@ fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     if json {
         out!(
             "{}",
-            serde_json::json!({ "prior": "gaussian, sigma = N/8", "moves": rows })
+            serde_json::json!({ "prior": "gaussian, sigma = N/8", "moves": rows, "plan_slices": slices })
         );
     }
     Ok(())

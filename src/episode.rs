@@ -7,7 +7,7 @@ use crate::lattice::{Move, Sensor, Torus};
 use crate::mcts::DecisionView;
 use crate::prior::{PriorSpec, TargetPrior};
 use crate::rng::{self, Rng};
-use crate::searchers::{MoveScores, Searcher, SearcherInfo, Setup, World};
+use crate::searchers::{MoveScores, Planning, Searcher, SearcherInfo, Setup, World};
 use crate::traces::Traces;
 use crate::view::Layer;
 
@@ -253,17 +253,27 @@ impl Episode {
         self.status
     }
 
-    /// `k` loops of work, carried across decisions (`k` moves for a searcher
-    /// that does not deliberate), stopping early if the episode ends.
-    /// Returns the real moves made.
+    /// `k` loops of work, carried across decisions (for a searcher that
+    /// does not deliberate, `k` moves or slices of a plan being made),
+    /// stopping early if the episode ends. Returns the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
+        self.advance_within(k, u64::MAX)
+    }
+
+    /// As [`Episode::advance`], making at most `max_moves` real moves (a
+    /// searcher that does not deliberate stops there; one that does
+    /// finishes the loops).
+    pub fn advance_within(&mut self, k: u64, max_moves: u64) -> u64 {
         let mut moves = 0;
         if !self.info.deliberates {
             for _ in 0..k {
-                if !self.step_loops(1) {
+                if moves >= max_moves || self.status != Status::Running {
                     break;
                 }
-                moves += 1;
+                // False while a planner makes its plan: that was a slice.
+                if self.step_loops(1) {
+                    moves += 1;
+                }
             }
             return moves;
         }
@@ -375,6 +385,12 @@ impl Episode {
     /// How a planner scored the four moves at its last decision.
     pub fn scores(&self) -> Option<MoveScores> {
         self.searcher.scores()
+    }
+
+    /// How far the plan being made has got (a planner that plans in
+    /// slices, while it does).
+    pub fn planning(&self) -> Option<Planning> {
+        self.searcher.planning()
     }
 
     /// Loops done in the decision under way (or the last one).

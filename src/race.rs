@@ -73,9 +73,10 @@ impl Race {
                 Some(j) if self.runs[j].status() == Status::Running => {
                     (self.runs[j].steps() as u64).saturating_sub(self.runs[i].steps() as u64)
                 }
-                _ => k,
+                _ => u64::MAX,
             };
-            self.runs[i].advance(k.min(limit));
+            // The limit is on moves: a planner's slices are not moves.
+            self.runs[i].advance_within(k, limit);
         }
     }
 
@@ -97,6 +98,40 @@ impl Race {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_planner_makes_its_plan_while_mcts_moves_and_then_keeps_pace() {
+        // The beam planner's slices are not moves: it plans while behind
+        // the MCTS run, never gets ahead of it, and then follows its plan.
+        let mcts = Config {
+            n: 12,
+            loops: 10,
+            ..Config::default()
+        };
+        let mut beam = mcts.clone();
+        for (k, v) in [
+            ("searcher", "beam"),
+            ("beam_width", "8"),
+            ("beam_depth", "20"),
+        ] {
+            beam.set(k, v).unwrap();
+        }
+        let mut race = Race::new(&[mcts, beam]).unwrap();
+        let mut planned_behind = false;
+        for _ in 0..20_000 {
+            race.advance(3);
+            let [a, b] = [&race.runs()[0], &race.runs()[1]];
+            if a.status() == Status::Running {
+                assert!(b.steps() <= a.steps(), "{} > {}", b.steps(), a.steps());
+            }
+            planned_behind |= b.planning().is_some() && a.steps() > b.steps();
+            if b.status() != Status::Running {
+                break;
+            }
+        }
+        assert!(planned_behind, "the plan was made while the MCTS run moved");
+        assert_ne!(race.runs()[1].status(), Status::Running);
+    }
 
     #[test]
     fn a_walker_keeps_pace_with_mcts_and_shares_its_target() {

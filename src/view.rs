@@ -13,7 +13,7 @@ use crate::episode::{Episode, Status};
 use crate::mcts::{self, DecisionView, FinalRule};
 use crate::named::named_enum;
 use crate::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
-use crate::searchers::MoveScores;
+use crate::searchers::{MoveScores, Planning};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 named_enum! {
@@ -238,6 +238,8 @@ pub struct Frame<'a> {
     pub intent: Option<Bytes<'a>>,
     /// How a planner scored the four moves at its last decision.
     pub scores: Option<MoveScores>,
+    /// How far the plan being made has got, while a planner makes one.
+    pub planning: Option<Planning>,
 }
 
 /// Keys are masked to 53 bits so a JS number holds them exactly.
@@ -431,6 +433,7 @@ impl FrameBuilder {
             practice,
             intent,
             scores: ep.scores(),
+            planning: ep.planning(),
         }
     }
 

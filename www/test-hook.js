@@ -6,7 +6,8 @@
 //   state()            the controller's state: idle | running | paused | found | capped | error
 //   speed()            the controller's speed: loops per frame, or 'max'
 //   runs()             a snapshot per run: { label, config, searcher, deliberates, n, start,
-//                      target, optimal, status, steps, pathLen, work, rolloutSteps }
+//                      target, optimal, status, steps, pathLen, work, rolloutSteps, scores,
+//                      intent, planning }
 //   path(i = 0)        run i's path so far (cells, start first)
 //   dispatch(cmd)      a controller command (see www/controller.js)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
@@ -68,6 +69,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
         rolloutSteps: r.rolloutSteps(),
         scores: r.frame.scores ?? null,
         intent: r.intent ? Array.from(r.intent) : [],
+        planning: r.frame.planning ?? null,
       })),
     path: (i = 0) => controller.runs[i]?.path() ?? [],
     dispatch: (cmd) => controller.dispatch(cmd),

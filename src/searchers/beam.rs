@@ -30,9 +30,9 @@
 //! and the parameters. So the last few plans are kept for the process
 //! ([`PLANS`]), and trials of one configuration make the plan once.
 
-use super::horizon::{completion, decide, Lookahead};
+use super::horizon::{decide, Completion, Lookahead};
 use super::refine::Refiner;
-use super::{Searcher, SearcherInfo, World};
+use super::{Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
@@ -86,6 +86,12 @@ struct PlanKey {
 /// The last plans made in this process, newest last.
 static PLANS: Mutex<Vec<(PlanKey, Vec<u32>)>> = Mutex::new(Vec::new());
 
+/// Forgets the plans kept, so a test makes its plan afresh.
+#[cfg(test)]
+fn forget_plans() {
+    PLANS.lock().unwrap_or_else(|e| e.into_inner()).clear();
+}
+
 /// The beam planner.
 pub struct Beam {
     rv: f64,
@@ -100,6 +106,44 @@ pub struct Beam {
     next: usize,
     planned: bool,
     last: Option<Move>,
+    /// The plan being made, between slices.
+    job: Option<Box<Job>>,
+}
+
+/// Moves of the horizon rule per slice of planning.
+const MOVES_PER_SLICE: usize = 8;
+/// First moves of refinement per slice of planning.
+const ROWS_PER_SLICE: usize = 2;
+
+/// Where a plan being made stands.
+enum Stage {
+    /// The horizon rule's own path, into `Job::rule`.
+    Rule(Completion),
+    /// The beam search.
+    Search(Box<BeamSearch>),
+    /// The horizon rule finishing the beam's best partial path (the belief
+    /// after that path), into `Job::tail`.
+    Tail(Box<BeliefState>, Completion),
+    /// Refining the rule's path, then the beam's.
+    RefineRule,
+    RefineBeam,
+}
+
+/// A plan being made, in slices (each a bounded piece of work), so a page
+/// stays responsive and can show how far it has got.
+struct Job {
+    key: PlanKey,
+    stage: Stage,
+    /// The rule's path, the beam's head and tail, and the beam's path
+    /// (each whole path from the searcher's cell).
+    rule: Vec<u32>,
+    head: Vec<u32>,
+    tail: Vec<u32>,
+    beam: Vec<u32>,
+    refiner: Refiner,
+    by_rule: f64,
+    /// The path the stage under way is working on, to draw.
+    sketch: Vec<u32>,
 }
 
 impl Beam {
@@ -117,11 +161,12 @@ impl Beam {
             next: 0,
             planned: false,
             last: None,
+            job: None,
         }
     }
 
-    /// Makes (or recalls) the plan from `pos`.
-    fn make(&mut self, torus: &Torus, sensor: &Sensor, belief: &BeliefState, pos: u32) {
+    /// Recalls the plan from `pos`, or starts making it.
+    fn begin(&mut self, torus: &Torus, belief: &BeliefState, pos: u32) {
         let mass: Vec<f64> = belief
             .plan_mass()
             .iter()
@@ -139,92 +184,151 @@ impl Beam {
             last: self.last,
             mass,
         };
-        let mut plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
+        let plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, plan)) = plans.iter().find(|(k, _)| *k == key) {
             self.plan.clone_from(plan);
-        } else {
-            drop(plans);
-            self.plan = self.compute(torus, sensor, belief, &key);
-            plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
-            if plans.len() == KEPT {
-                plans.remove(0);
-            }
-            plans.push((key, self.plan.clone()));
+            self.next = 0;
+            self.planned = true;
+            return;
         }
-        self.next = 0;
-        self.planned = true;
+        drop(plans);
+        let run = Completion::new(belief, pos, self.last, self.step_cap as usize);
+        self.job = Some(Box::new(Job {
+            key,
+            stage: Stage::Rule(run),
+            rule: Vec::new(),
+            head: Vec::new(),
+            tail: Vec::new(),
+            beam: Vec::new(),
+            refiner: Refiner::default(),
+            by_rule: 0.0,
+            sketch: Vec::new(),
+        }));
     }
 
-    /// The plan (cells after `key.pos`).
-    fn compute(
-        &mut self,
-        torus: &Torus,
-        sensor: &Sensor,
-        belief: &BeliefState,
-        key: &PlanKey,
-    ) -> Vec<u32> {
+    /// Works on the plan under way for up to `slices` slices; true once
+    /// the plan is made (and kept for the process).
+    fn work(&mut self, torus: &Torus, sensor: &Sensor, belief: &BeliefState, slices: u32) -> bool {
+        let Some(job) = self.job.as_deref_mut() else {
+            return true;
+        };
+        let k = slices as usize;
         let cap = self.step_cap as usize;
-        let pos = key.pos;
-        // The horizon rule's own path.
-        let mut rule = Vec::new();
-        completion(
-            &mut self.look,
-            torus,
-            sensor,
-            belief,
-            &mut self.cov,
-            pos,
-            self.last,
-            cap,
-            &mut rule,
-        );
-        rule.insert(0, pos);
-        // The beam's path, finished by the rule.
-        let head = search(
-            torus,
-            sensor,
-            &key.mass,
-            pos,
-            self.width as usize,
-            self.depth as usize,
-        );
-        let mut after = belief.clone();
-        for &c in &head {
-            after.search_around(sensor, c);
-        }
-        let end = head.last().copied().unwrap_or(pos);
-        let last = match head.len() {
-            0 => self.last,
-            1 => torus.move_to(pos, end),
-            k => torus.move_to(head[k - 2], end),
-        };
-        let mut tail = Vec::new();
-        completion(
-            &mut self.look,
-            torus,
-            sensor,
-            &after,
-            &mut self.cov,
-            end,
-            last,
-            cap.saturating_sub(head.len()),
-            &mut tail,
-        );
-        let mut beam = Vec::with_capacity(1 + head.len() + tail.len());
-        beam.push(pos);
-        beam.extend_from_slice(&head);
-        beam.extend_from_slice(&tail);
-        let mut refiner = Refiner::default();
         let span = 2 * self.depth as usize;
-        let (m, c) = (&key.mass, self.step_cap);
-        let by_rule = refiner.refine(torus, sensor, m, c, WINDOW, span, &mut rule);
-        let by_beam = refiner.refine(torus, sensor, m, c, WINDOW, span, &mut beam);
-        let plan = if by_beam.after < by_rule.after {
-            beam
-        } else {
-            rule
+        let pos = job.key.pos;
+        let (mass, c) = (&job.key.mass[..], self.step_cap);
+        let look = &mut self.look;
+        let cov = &mut self.cov;
+        let mut left = k;
+        while left > 0 {
+            left -= 1;
+            match &mut job.stage {
+                Stage::Rule(run) => {
+                    let m = MOVES_PER_SLICE.saturating_mul(k);
+                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m) {
+                        job.rule.insert(0, pos);
+                        let (w, d) = (self.width as usize, self.depth as usize);
+                        let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
+                        job.stage = Stage::Search(Box::new(search));
+                    }
+                    job.sketch.clone_from(&job.rule);
+                }
+                Stage::Search(search) => {
+                    let done = search.work(torus, sensor, mass, k);
+                    search.best(&mut job.head);
+                    job.sketch.clear();
+                    job.sketch.push(pos);
+                    job.sketch.extend_from_slice(&job.head);
+                    if done {
+                        let mut after = belief.clone();
+                        for &c in &job.head {
+                            after.search_around(sensor, c);
+                        }
+                        let end = job.head.last().copied().unwrap_or(pos);
+                        let last = match job.head.len() {
+                            0 => self.last,
+                            1 => torus.move_to(pos, end),
+                            n => torus.move_to(job.head[n - 2], end),
+                        };
+                        let rest = cap.saturating_sub(job.head.len());
+                        let run = Completion::new(&after, end, last, rest);
+                        job.tail.clear();
+                        job.stage = Stage::Tail(Box::new(after), run);
+                    }
+                }
+                Stage::Tail(after, run) => {
+                    let m = MOVES_PER_SLICE.saturating_mul(k);
+                    let done = run.moves(look, torus, sensor, after, cov, &mut job.tail, m);
+                    job.beam.clear();
+                    job.beam.push(pos);
+                    job.beam.extend_from_slice(&job.head);
+                    job.beam.extend_from_slice(&job.tail);
+                    job.sketch.clone_from(&job.beam);
+                    if done {
+                        job.refiner.start(torus, sensor, mass, c, span, &job.rule);
+                        job.sketch.clone_from(&job.rule);
+                        job.stage = Stage::RefineRule;
+                    }
+                }
+                Stage::RefineRule => {
+                    let rows = ROWS_PER_SLICE.saturating_mul(k);
+                    if job.refiner.work(torus, sensor, mass, c, WINDOW, rows) {
+                        job.by_rule = job.refiner.finish(mass, c, &mut job.rule).after;
+                        job.refiner.start(torus, sensor, mass, c, span, &job.beam);
+                        job.sketch.clone_from(&job.beam);
+                        job.stage = Stage::RefineBeam;
+                    }
+                }
+                Stage::RefineBeam => {
+                    let rows = ROWS_PER_SLICE.saturating_mul(k);
+                    if job.refiner.work(torus, sensor, mass, c, WINDOW, rows) {
+                        let by_beam = job.refiner.finish(mass, c, &mut job.beam).after;
+                        let plan = if by_beam < job.by_rule {
+                            &job.beam
+                        } else {
+                            &job.rule
+                        };
+                        self.plan.clear();
+                        self.plan.extend_from_slice(&plan[1..]);
+                        let job = self.job.take().expect("the job under way");
+                        let mut plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
+                        if plans.len() == KEPT {
+                            plans.remove(0);
+                        }
+                        plans.push((job.key, self.plan.clone()));
+                        self.next = 0;
+                        self.planned = true;
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// How far the plan under way has got.
+    fn progress(&self) -> Option<Planning> {
+        let job = self.job.as_deref()?;
+        let (stage, done, total) = match &job.stage {
+            Stage::Rule(_) => ("horizon rule's path", job.rule.len(), 0),
+            Stage::Search(s) => ("beam search, depth", s.level, self.depth as usize),
+            Stage::Tail(..) => ("finishing the beam's path", job.tail.len(), 0),
+            Stage::RefineRule | Stage::RefineBeam => {
+                let (pass, i, len) = job.refiner.progress();
+                let stage = match (&job.stage, pass) {
+                    (Stage::RefineRule, 0) => "refining the rule's path, pass 1",
+                    (Stage::RefineRule, _) => "refining the rule's path, later passes",
+                    (_, 0) => "refining the beam's path, pass 1",
+                    _ => "refining the beam's path, later passes",
+                };
+                (stage, i, len)
+            }
         };
-        plan[1..].to_vec()
+        Some(Planning {
+            stage,
+            done: done as u32,
+            total: total as u32,
+        })
     }
 }
 
@@ -267,143 +371,228 @@ fn zobrist_pos(c: u32) -> u64 {
     splitmix64(c as u64 ^ 0xA5A5_5A5A_0F0F_F0F0)
 }
 
-/// The beam search: the best partial path from `pos` over `mass` (0 on
-/// searched cells), as the cells it enters.
-fn search(
-    torus: &Torus,
-    sensor: &Sensor,
-    mass: &[f64],
-    pos: u32,
+/// Partial paths expanded per slice of [`BeamSearch::work`].
+const NODES_PER_SLICE: usize = 16;
+
+/// The beam search from `pos` over `mass` (0 on searched cells), made in
+/// slices of a few partial paths each; the best partial path is
+/// [`BeamSearch::best`].
+struct BeamSearch {
     width: usize,
     depth: usize,
-) -> Vec<u32> {
-    let cells = torus.cells();
-    let words = cells.div_ceil(64);
-    let (front, reach) = front_and_reach(sensor);
-    let mut heavy: Vec<u32> = (0..cells as u32)
-        .filter(|&c| mass[c as usize] > 0.0)
-        .collect();
-    heavy.sort_by(|&a, &b| {
-        mass[b as usize]
-            .total_cmp(&mass[a as usize])
-            .then(a.cmp(&b))
-    });
-    let total_left = heavy.len() as u32;
-    heavy.truncate(4 * front * depth + sensor.offsets().len());
-    let left_mass: f64 = mass.iter().sum();
+    words: usize,
+    front: usize,
+    reach: u32,
+    heavy: Vec<u32>,
+    arena: Vec<u64>,
+    hist: Vec<(usize, u32)>,
+    nodes: Vec<Node>,
+    next_arena: Vec<u64>,
+    next_nodes: Vec<Node>,
+    children: Vec<Child>,
+    fresh: Vec<u32>,
+    seen: HashSet<u64>,
+    per_cell: Vec<u8>,
+    /// Depths finished, and the next node of the depth under way.
+    level: usize,
+    at: usize,
+    done: bool,
+}
 
-    let mut arena = vec![0u64; words];
-    let mut hist: Vec<(usize, u32)> = Vec::new();
-    let mut nodes = vec![Node {
-        pos,
-        cost: 0.0,
-        left_mass,
-        left: total_left,
-        key: 0,
-        bits: 0,
-        hist: usize::MAX,
-    }];
-    let covered =
-        |arena: &[u64], at: usize, c: u32| arena[at + c as usize / 64] >> (c % 64) & 1 == 1;
-    let mut next_arena: Vec<u64> = Vec::new();
-    let mut next_nodes: Vec<Node> = Vec::new();
-    let mut children: Vec<Child> = Vec::new();
-    let mut fresh: Vec<u32> = Vec::new();
-    let mut seen: HashSet<u64> = HashSet::new();
-    let mut per_cell = vec![0u8; cells];
-    for _ in 0..depth {
-        if nodes[0].left == 0 {
-            break;
+impl BeamSearch {
+    fn new(
+        torus: &Torus,
+        sensor: &Sensor,
+        mass: &[f64],
+        pos: u32,
+        width: usize,
+        depth: usize,
+    ) -> BeamSearch {
+        let cells = torus.cells();
+        let (front, reach) = front_and_reach(sensor);
+        let mut heavy: Vec<u32> = (0..cells as u32)
+            .filter(|&c| mass[c as usize] > 0.0)
+            .collect();
+        heavy.sort_by(|&a, &b| {
+            mass[b as usize]
+                .total_cmp(&mass[a as usize])
+                .then(a.cmp(&b))
+        });
+        let total_left = heavy.len() as u32;
+        heavy.truncate(4 * front * depth + sensor.offsets().len());
+        let words = cells.div_ceil(64);
+        BeamSearch {
+            width,
+            depth,
+            words,
+            front,
+            reach,
+            heavy,
+            arena: vec![0u64; words],
+            hist: Vec::new(),
+            nodes: vec![Node {
+                pos,
+                cost: 0.0,
+                left_mass: mass.iter().sum(),
+                left: total_left,
+                key: 0,
+                bits: 0,
+                hist: usize::MAX,
+            }],
+            next_arena: Vec::new(),
+            next_nodes: Vec::new(),
+            children: Vec::new(),
+            fresh: Vec::new(),
+            seen: HashSet::new(),
+            per_cell: vec![0u8; cells],
+            level: 0,
+            at: 0,
+            done: depth == 0,
         }
-        children.clear();
-        for (i, node) in nodes.iter().enumerate() {
-            if node.left == 0 {
-                continue;
-            }
-            for m in Move::ALL {
-                let q = torus.step(node.pos, m);
-                fresh.clear();
-                let (mut gain, mut count, mut key) = (0.0, 0, node.key);
-                for c in sensor.around(q) {
-                    if !covered(&arena, node.bits, c) && mass[c as usize] > 0.0 {
-                        fresh.push(c);
-                        gain += mass[c as usize];
-                        count += 1;
-                        key ^= zobrist(c);
-                    }
+    }
+
+    /// Expands up to `slices` · [`NODES_PER_SLICE`] partial paths, ending
+    /// each depth by keeping the best children. True when the search is
+    /// done (the depth reached, every cell covered, or no child left).
+    fn work(&mut self, torus: &Torus, sensor: &Sensor, mass: &[f64], slices: usize) -> bool {
+        let mut budget = slices.saturating_mul(NODES_PER_SLICE);
+        while !self.done && budget > 0 {
+            if self.at == 0 {
+                if self.nodes[0].left == 0 {
+                    self.done = true;
+                    break;
                 }
-                let left = node.left - count;
-                let r = if left == 0 {
+                self.children.clear();
+            }
+            let end = (self.at + budget).min(self.nodes.len());
+            for i in self.at..end {
+                self.expand(torus, sensor, mass, i);
+            }
+            budget -= end - self.at;
+            self.at = end;
+            if self.at == self.nodes.len() {
+                self.select(sensor);
+                self.at = 0;
+                self.level += 1;
+                if self.level == self.depth {
+                    self.done = true;
+                }
+            }
+        }
+        self.done
+    }
+
+    /// The children of node `i`, ranked.
+    fn expand(&mut self, torus: &Torus, sensor: &Sensor, mass: &[f64], i: usize) {
+        let node = self.nodes[i];
+        if node.left == 0 {
+            return;
+        }
+        let (arena, fresh) = (&self.arena, &mut self.fresh);
+        let covered = |at: usize, c: u32| arena[at + c as usize / 64] >> (c % 64) & 1 == 1;
+        for m in Move::ALL {
+            let q = torus.step(node.pos, m);
+            fresh.clear();
+            let (mut gain, mut count, mut key) = (0.0, 0, node.key);
+            for c in sensor.around(q) {
+                if !covered(node.bits, c) && mass[c as usize] > 0.0 {
+                    fresh.push(c);
+                    gain += mass[c as usize];
+                    count += 1;
+                    key ^= zobrist(c);
+                }
+            }
+            let left = node.left - count;
+            let r = if left == 0 {
+                0.0
+            } else {
+                node.left_mass - gain
+            };
+            let cost = node.cost + r;
+            let rank = cost
+                + if left == 0 {
                     0.0
                 } else {
-                    node.left_mass - gain
+                    let fresh = &*fresh;
+                    rest_bound(
+                        torus,
+                        mass,
+                        &self.heavy,
+                        self.front,
+                        self.reach,
+                        q,
+                        r,
+                        |c| covered(node.bits, c) || fresh.contains(&c),
+                    )
                 };
-                let cost = node.cost + r;
-                let rank = cost
-                    + if left == 0 {
-                        0.0
-                    } else {
-                        rest_bound(torus, mass, &heavy, front, reach, q, r, |c| {
-                            covered(&arena, node.bits, c) || fresh.contains(&c)
-                        })
-                    };
-                children.push(Child {
-                    rank,
-                    key: key ^ zobrist_pos(q),
-                    parent: i,
-                    cell: q,
-                    cost,
-                    left_mass: r,
-                    left,
-                });
-            }
+            self.children.push(Child {
+                rank,
+                key: key ^ zobrist_pos(q),
+                parent: i,
+                cell: q,
+                cost,
+                left_mass: r,
+                left,
+            });
         }
-        children.sort_by(|a, b| a.rank.total_cmp(&b.rank).then(a.key.cmp(&b.key)));
-        seen.clear();
-        next_nodes.clear();
-        next_arena.clear();
-        for ch in &children {
-            if next_nodes.len() == width {
+    }
+
+    /// Keeps the best children as the next depth's nodes.
+    fn select(&mut self, sensor: &Sensor) {
+        let words = self.words;
+        self.children
+            .sort_by(|a, b| a.rank.total_cmp(&b.rank).then(a.key.cmp(&b.key)));
+        self.seen.clear();
+        self.next_nodes.clear();
+        self.next_arena.clear();
+        for ch in &self.children {
+            if self.next_nodes.len() == self.width {
                 break;
             }
-            if per_cell[ch.cell as usize] >= PER_CELL || !seen.insert(ch.key) {
+            if self.per_cell[ch.cell as usize] >= PER_CELL || !self.seen.insert(ch.key) {
                 continue;
             }
-            per_cell[ch.cell as usize] += 1;
-            let parent = nodes[ch.parent];
-            let at = next_arena.len();
-            next_arena.extend_from_slice(&arena[parent.bits..parent.bits + words]);
+            self.per_cell[ch.cell as usize] += 1;
+            let parent = self.nodes[ch.parent];
+            let at = self.next_arena.len();
+            self.next_arena
+                .extend_from_slice(&self.arena[parent.bits..parent.bits + words]);
             for c in sensor.around(ch.cell) {
-                next_arena[at + c as usize / 64] |= 1 << (c % 64);
+                self.next_arena[at + c as usize / 64] |= 1 << (c % 64);
             }
-            hist.push((parent.hist, ch.cell));
-            next_nodes.push(Node {
+            self.hist.push((parent.hist, ch.cell));
+            self.next_nodes.push(Node {
                 pos: ch.cell,
                 cost: ch.cost,
                 left_mass: ch.left_mass,
                 left: ch.left,
                 key: ch.key ^ zobrist_pos(ch.cell),
                 bits: at,
-                hist: hist.len() - 1,
+                hist: self.hist.len() - 1,
             });
         }
-        for n in &next_nodes {
-            per_cell[n.pos as usize] = 0;
+        for n in &self.next_nodes {
+            self.per_cell[n.pos as usize] = 0;
         }
-        if next_nodes.is_empty() {
-            break;
+        if self.next_nodes.is_empty() {
+            self.done = true;
+            return;
         }
-        std::mem::swap(&mut nodes, &mut next_nodes);
-        std::mem::swap(&mut arena, &mut next_arena);
+        std::mem::swap(&mut self.nodes, &mut self.next_nodes);
+        std::mem::swap(&mut self.arena, &mut self.next_arena);
     }
-    let mut path = Vec::new();
-    let mut h = nodes[0].hist;
-    while h != usize::MAX {
-        path.push(hist[h].1);
-        h = hist[h].0;
+
+    /// The best partial path of the last depth finished, as the cells it
+    /// enters, written into `out`.
+    fn best(&self, out: &mut Vec<u32>) {
+        out.clear();
+        let mut h = self.nodes[0].hist;
+        while h != usize::MAX {
+            out.push(self.hist[h].1);
+            h = self.hist[h].0;
+        }
+        out.reverse();
     }
-    path.reverse();
-    path
 }
 
 /// The most new cells one move can cover, and the sensor's ℓ1 reach.
@@ -465,7 +654,7 @@ fn rest_bound(
 }
 
 impl Searcher for Beam {
-    fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
+    fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
         let done = self.planned && self.next >= self.plan.len();
         let on_plan = self.planned
             && self
@@ -473,7 +662,14 @@ impl Searcher for Beam {
                 .get(self.next)
                 .is_some_and(|&c| w.torus.l1(w.pos, c) == 1);
         if !on_plan && !done {
-            self.make(w.torus, w.sensor, w.belief, w.pos);
+            if self.job.is_none() {
+                self.begin(w.torus, w.belief, w.pos);
+            }
+            // A slice of planning per loop asked for: the decision is
+            // under way until the plan is made.
+            if !self.work(w.torus, w.sensor, w.belief, max_loops) {
+                return None;
+            }
         }
         if let Some(&c) = self.plan.get(self.next) {
             return Some(w.torus.move_to(w.pos, c).unwrap_or(Move::Right));
@@ -512,7 +708,14 @@ impl Searcher for Beam {
     }
 
     fn intent(&self) -> &[u32] {
-        &self.plan[self.next.min(self.plan.len())..]
+        match &self.job {
+            Some(job) => &job.sketch,
+            None => &self.plan[self.next.min(self.plan.len())..],
+        }
+    }
+
+    fn planning(&self) -> Option<Planning> {
+        self.progress()
     }
 }
 
@@ -520,6 +723,63 @@ impl Searcher for Beam {
 mod tests {
     use super::*;
     use crate::config::Config;
+
+    #[test]
+    fn a_plan_made_in_slices_is_the_plan_made_at_once() {
+        // One slice per call, as the page's worker asks: the progress is
+        // reported at every slice and moves through the stages in order,
+        // no move is made until the plan is, and the path is the one a
+        // plan made in a single call gives (made afresh, not recalled).
+        let mut cfg = Config::default();
+        for (k, v) in [
+            ("n", "14"),
+            ("searcher", "beam"),
+            ("sigma", "2.25"),
+            ("beam_width", "12"),
+            ("beam_depth", "30"),
+        ] {
+            cfg.set(k, v).unwrap();
+        }
+        let mut sliced = crate::episode::Episode::blind(&cfg).unwrap();
+        let (mut slices, mut stages, mut depth) = (0, Vec::new(), 0);
+        while !sliced.step_loops(1) {
+            slices += 1;
+            let p = sliced.planning().expect("progress while the plan is made");
+            assert!(p.total == 0 || p.done <= p.total, "{p:?}");
+            if p.stage == "beam search, depth" {
+                assert!(p.done >= depth, "the depth never goes back: {p:?}");
+                depth = p.done;
+            }
+            if stages.last() != Some(&p.stage) {
+                stages.push(p.stage);
+            }
+            assert_eq!(sliced.steps(), 0);
+        }
+        assert!(sliced.planning().is_none());
+        assert!(slices > 20, "{slices} slices");
+        // The last depth seen is before the slice that finished the search.
+        assert!((20..30).contains(&depth), "depth {depth}");
+        let order = [
+            "horizon rule's path",
+            "beam search, depth",
+            "finishing the beam's path",
+            "refining the rule's path, pass 1",
+        ];
+        assert_eq!(stages[..4], order, "{stages:?}");
+        assert!(
+            stages.contains(&"refining the beam's path, pass 1"),
+            "{stages:?}"
+        );
+        while sliced.steps() < 250 {
+            sliced.step_move();
+        }
+        forget_plans();
+        let mut whole = crate::episode::Episode::blind(&cfg).unwrap();
+        while whole.steps() < 250 {
+            whole.step_move();
+        }
+        assert_eq!(sliced.path(), whole.path());
+    }
 
     #[test]
     fn front_and_reach_follow_the_radius() {

@@ -230,17 +230,63 @@ pub fn completion(
     cap: usize,
     out: &mut Vec<u32>,
 ) {
-    let mut left = super::plan::mass_cells_left(belief);
-    let (mut p, mut last) = (pos, last);
     out.clear();
-    while left > 0 && out.len() < cap {
-        let (m, _, _) = decide(look, torus, sensor, belief, cov, p, last, false);
-        p = torus.step(p, m);
-        left -= cov.cover_counted(sensor, belief, p).1;
-        out.push(p);
-        last = Some(m);
+    let mut run = Completion::new(belief, pos, last, cap);
+    while !run.moves(look, torus, sensor, belief, cov, out, usize::MAX) {}
+}
+
+/// A [`completion`] made in slices: [`Completion::moves`] adds a few moves
+/// at a time. Between slices `cov` holds the simulation so far, so it must
+/// not be used for anything else until the completion is done.
+#[derive(Clone, Copy, Debug)]
+pub struct Completion {
+    left: u32,
+    p: u32,
+    last: Option<Move>,
+    cap: usize,
+}
+
+impl Completion {
+    /// A completion from `pos` after `last`, of at most `cap` moves.
+    pub fn new(belief: &BeliefState, pos: u32, last: Option<Move>, cap: usize) -> Completion {
+        Completion {
+            left: super::plan::mass_cells_left(belief),
+            p: pos,
+            last,
+            cap,
+        }
     }
-    cov.clear();
+
+    /// Adds up to `k` moves to `out` (cleared by the caller before the
+    /// first slice), with the arguments of [`completion`]. True when the
+    /// completion is done (and `cov` is cleared).
+    #[allow(clippy::too_many_arguments)]
+    pub fn moves(
+        &mut self,
+        look: &mut Lookahead,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        cov: &mut Coverage,
+        out: &mut Vec<u32>,
+        k: usize,
+    ) -> bool {
+        for _ in 0..k {
+            if self.left == 0 || out.len() >= self.cap {
+                break;
+            }
+            let (m, _, _) = decide(look, torus, sensor, belief, cov, self.p, self.last, false);
+            self.p = torus.step(self.p, m);
+            self.left -= cov.cover_counted(sensor, belief, self.p).1;
+            out.push(self.p);
+            self.last = Some(m);
+        }
+        let done = self.left == 0 || out.len() >= self.cap;
+        if done {
+            cov.clear();
+        }
+        done
+    }
 }
 
 /// The receding-horizon searcher.

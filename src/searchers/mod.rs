@@ -92,6 +92,24 @@ pub trait Searcher {
     fn scores(&self) -> Option<MoveScores> {
         None
     }
+
+    /// How far a plan being made has got, while a planner that makes its
+    /// plan in slices is making one (`None` otherwise).
+    fn planning(&self) -> Option<Planning> {
+        None
+    }
+}
+
+/// How far a plan being made has got, for people: the stage and, where it
+/// has a known length, the steps done of it.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Planning {
+    /// What is being done (e.g. "beam search, depth").
+    pub stage: &'static str,
+    /// Steps of the stage done.
+    pub done: u32,
+    /// Steps in the stage (0 when not known ahead).
+    pub total: u32,
 }
 
 /// A planner's score of each of the four moves (in `Move::ALL` order) and

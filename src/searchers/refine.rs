@@ -67,17 +67,31 @@ pub struct Refiner {
     touched: Vec<u32>,
     /// The window's new cells.
     q: Vec<u32>,
+    /// Where the refinement under way stands.
+    cursor: Cursor,
+}
+
+/// Where a refinement stands between slices of [`Refiner::work`].
+#[derive(Clone, Copy, Debug, Default)]
+struct Cursor {
+    /// The total before refining.
+    before: f64,
+    /// Changes kept in finished passes, and in the pass under way.
+    changes: u32,
+    kept: u32,
+    /// Passes finished, and the next first move of the one under way.
+    passes: u32,
+    i: usize,
+    done: bool,
 }
 
 impl Refiner {
-    /// Refines the first `span` moves of `path` (cells; `path[0]` is the
-    /// searcher's cell and stays) in place for the mass `mass` (0 on cells
-    /// already searched) and step cap `cap`, trying changes spanning fewer
-    /// than `window` moves. Cells after the span stay as they are.
+    /// Refines the first `span` moves of `path` at once: [`Refiner::start`],
+    /// [`Refiner::work`] until done, [`Refiner::finish`].
     ///
     /// # Panics
-    /// If a cell of `path` is off `torus`, or consecutive cells are not
-    /// neighbours.
+    /// As [`Refiner::start`].
+    #[cfg(test)]
     #[allow(clippy::too_many_arguments)]
     pub fn refine(
         &mut self,
@@ -89,16 +103,37 @@ impl Refiner {
         span: usize,
         path: &mut [u32],
     ) -> Refined {
+        self.start(torus, sensor, mass, cap, span, path);
+        while !self.work(torus, sensor, mass, cap, window, usize::MAX) {}
+        self.finish(mass, cap, path)
+    }
+
+    /// Starts refining the first `span` moves of `path` (cells; `path[0]`
+    /// is the searcher's cell and stays) for the mass `mass` (0 on cells
+    /// already searched) and step cap `cap`. Cells after the span stay as
+    /// they are. [`Refiner::work`] then tries the changes in slices, and
+    /// [`Refiner::finish`] writes the refined span back.
+    ///
+    /// # Panics
+    /// If a cell of `path` is off `torus`, or consecutive cells are not
+    /// neighbours.
+    pub fn start(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        mass: &[f64],
+        cap: u32,
+        span: usize,
+        path: &[u32],
+    ) {
         let cells = torus.cells();
+        self.head.clear();
+        self.cursor = Cursor::default();
         if path.is_empty() {
-            return Refined {
-                before: 0.0,
-                after: 0.0,
-                changes: 0,
-            };
+            self.cursor.done = true;
+            return;
         }
         let end = span.min(path.len() - 1);
-        self.head.clear();
         self.head.extend_from_slice(&path[..=end]);
         self.xs.clear();
         self.ys.clear();
@@ -123,46 +158,96 @@ impl Refiner {
         self.now = 0;
         self.sights.clear();
         self.index(sensor);
-        let before = self.total(mass, cap);
-        let mut changes = 0;
-        for _ in 0..MAX_PASSES {
-            let kept = self.pass(torus, sensor, mass, cap, window);
-            changes += kept;
-            if kept == 0 {
+        self.cursor.before = self.total(mass, cap);
+    }
+
+    /// Tries the changes from up to `rows` first moves `i` of the passes
+    /// under way (the arguments as given to [`Refiner::start`]), changes
+    /// spanning fewer than `window` moves. True once a pass keeps nothing
+    /// (or the passes run out): refinement is done.
+    pub fn work(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        mass: &[f64],
+        cap: u32,
+        window: u32,
+        rows: usize,
+    ) -> bool {
+        let mut rows = rows;
+        // Moves i and j both lie in the span: j + 1 ≤ len − 1.
+        let last = self.head.len().saturating_sub(2);
+        while !self.cursor.done {
+            let c = self.cursor;
+            if c.i >= last {
+                self.cursor.passes += 1;
+                self.cursor.changes += c.kept;
+                self.cursor.done = c.kept == 0 || self.cursor.passes == MAX_PASSES;
+                (self.cursor.i, self.cursor.kept) = (0, 0);
+                continue;
+            }
+            if rows == 0 {
                 break;
             }
+            self.cursor.kept += self.row(torus, sensor, mass, cap, window, c.i);
+            self.cursor.i += 1;
+            rows -= 1;
+        }
+        self.cursor.done
+    }
+
+    /// Where the passes stand, as (pass, first move i, moves in the span).
+    pub fn progress(&self) -> (u32, usize, usize) {
+        (self.cursor.passes, self.cursor.i, self.head.len())
+    }
+
+    /// Writes the refined span back into `path` (the one given to
+    /// [`Refiner::start`]) and says what refinement did.
+    pub fn finish(&mut self, mass: &[f64], cap: u32, path: &mut [u32]) -> Refined {
+        if self.head.is_empty() {
+            return Refined {
+                before: 0.0,
+                after: 0.0,
+                changes: 0,
+            };
         }
         path[..self.head.len()].copy_from_slice(&self.head);
         Refined {
-            before,
+            before: self.cursor.before,
             after: self.total(mass, cap),
-            changes,
+            changes: self.cursor.changes,
         }
     }
 
-    /// One pass over the span; the number of changes kept.
-    fn pass(&mut self, torus: &Torus, sensor: &Sensor, mass: &[f64], cap: u32, window: u32) -> u32 {
+    /// The changes whose first move is `i`, in one pass over the span; the
+    /// number kept.
+    fn row(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        mass: &[f64],
+        cap: u32,
+        window: u32,
+        i: usize,
+    ) -> u32 {
         let len = self.head.len();
         let mut kept = 0;
-        // Moves i and j both lie in the span: j + 1 ≤ len − 1.
-        for i in 0..len.saturating_sub(2) {
-            let top = (i + window as usize).min(len - 1);
-            let mut j = i + 1;
-            while j < top {
-                let mut better = false;
-                for kind in 0..KINDS {
-                    if self.candidate(torus, i, j, kind)
-                        && self.keep_if_better(torus, sensor, mass, cap, i + 1)
-                    {
-                        better = true;
-                        break;
-                    }
+        let top = (i + window as usize).min(len - 1);
+        let mut j = i + 1;
+        while j < top {
+            let mut better = false;
+            for kind in 0..KINDS {
+                if self.candidate(torus, i, j, kind)
+                    && self.keep_if_better(torus, sensor, mass, cap, i + 1)
+                {
+                    better = true;
+                    break;
                 }
-                if better {
-                    kept += 1;
-                } else {
-                    j += 1;
-                }
+            }
+            if better {
+                kept += 1;
+            } else {
+                j += 1;
             }
         }
         kept
@@ -433,6 +518,51 @@ mod tests {
             &mut path,
         );
         assert_eq!(again.changes, 0);
+    }
+
+    #[test]
+    fn refining_in_slices_of_one_row_is_refining_at_once() {
+        // A meander with wasted wiggles: many changes are kept, in several
+        // passes, so the slices cross pass boundaries.
+        let (cfg, g) = game(&[("n", "12"), ("sigma", "3")]);
+        let mut moves = Vec::new();
+        for row in 0..4 {
+            let along = if row % 2 == 0 {
+                Move::Right
+            } else {
+                Move::Left
+            };
+            for k in 0..11 {
+                moves.push(along);
+                if k % 4 == 1 {
+                    moves.extend([Move::Up, Move::Down]);
+                }
+            }
+            moves.extend([Move::Down; 3]);
+        }
+        let path = walk(&g.torus, g.start, &moves);
+        let mass = g.prior.mass();
+        let (cap, span) = (cfg.step_cap, path.len());
+        let mut whole = path.clone();
+        let at_once =
+            Refiner::default().refine(&g.torus, &g.sensor, mass, cap, 30, span, &mut whole);
+        let mut sliced = path.clone();
+        let mut r = Refiner::default();
+        r.start(&g.torus, &g.sensor, mass, cap, span, &sliced);
+        let mut slices = 0;
+        let mut passes = Vec::new();
+        while !r.work(&g.torus, &g.sensor, mass, cap, 30, 1) {
+            slices += 1;
+            let (pass, i, len) = r.progress();
+            assert!(i < len);
+            passes.push(pass);
+        }
+        let out = r.finish(mass, cap, &mut sliced);
+        assert_eq!(out, at_once);
+        assert_eq!(sliced, whole);
+        assert!(at_once.changes > 0);
+        assert!(passes.last() > passes.first(), "more than one pass");
+        assert!(slices > path.len(), "{slices} slices");
     }
 
     #[test]

@@ -635,6 +635,39 @@ test("a planner draws its path ahead and the decision panel shows its scores of 
   });
 });
 
+test('the beam planner makes its plan in slices: the board says how far it has got, frames keep coming, then it follows the plan', { timeout: 180_000 }, async () => {
+  await withApp('?searcher=beam&n=24&sigma=2&speed=max', async (page) => {
+    // Sample the frames while the plan is made: each one answered by the
+    // search worker mid-plan, so the progress moves on between them.
+    const seen = await page.evaluate(async () => {
+      const out = [];
+      const t0 = performance.now();
+      while (performance.now() - t0 < 120_000) {
+        const r = window.torusTest.runs()[0];
+        if (r?.planning) out.push({ ...r.planning, steps: r.steps, intent: r.intent.length, banner: document.querySelector('#board-0 .banner')?.textContent ?? '' });
+        if (r && r.steps > 0) break;
+        await new Promise((res) => requestAnimationFrame(res));
+      }
+      return out;
+    });
+    assert.ok(seen.length >= 3, `progress seen in ${seen.length} frames`);
+    assert.ok(seen.every((p) => p.steps === 0), 'no move is made while planning');
+    const search = seen.filter((p) => p.stage === 'beam search, depth');
+    assert.ok(search.length >= 2, `beam search seen in ${search.length} frames`);
+    assert.ok(search.at(-1).done > search[0].done, 'the depth grows from frame to frame');
+    assert.ok(search.every((p) => p.total === 200 && p.done <= 200));
+    assert.ok(seen.some((p) => p.intent > 1), 'the path being worked on is drawn');
+    assert.ok(seen.some((p) => /^Planning: beam search, depth \d+ of 200…$/.test(p.banner)), seen.map((p) => p.banner).join(' | '));
+    // Then the plan is followed (a move takes about a microsecond, so at
+    // full speed the run ends soon after) and the banner gives the result.
+    await page.waitForFunction(() => window.torusTest.runs()[0].status === 'found', null, { timeout: 60_000 });
+    const r = (await page.evaluate(() => window.torusTest.runs()))[0];
+    assert.equal(r.planning, null);
+    assertUnitSteps(await mainPath(page), r.n);
+    await page.waitForFunction(() => /^Found in/.test(document.querySelector('#board-0 .banner').textContent), null, { timeout: 10_000 });
+  });
+});
+
 test('the belief MCTS draws its plan ahead, one cell a step from where it stands', { timeout: 120_000 }, async () => {
   await withApp('?variant=pomcp&n=20&sigma=3&speed=1', async (page) => {
     await page.waitForFunction(() => {

@@ -6,6 +6,7 @@
 
 import { $, setText, fmtInt, fmtNum, CHOICE_LABELS } from '../ui.js';
 import { MOVE_NAMES } from '../renderer.js';
+import { planningText } from './stats.js';
 
 const ARROWS = ['↑', '→', '↓', '←'];
 
@@ -64,7 +65,11 @@ export function updateDecision(run) {
   const d = run.frame.decision;
   if (!d) {
     for (const tr of trs) for (const td of tr.cells) setText(td, '–');
-    setText('decision-note', run.deliberates ? '' : `${run.label} does not deliberate: ${run.help}.`);
+    const p = run.frame.planning;
+    const note = p
+      ? `${run.label} is making its plan (${planningText(p)}); the Planned path layer shows the path it is working on.`
+      : run.deliberates ? '' : `${run.label} does not deliberate: ${run.help}.`;
+    setText('decision-note', note);
     return;
   }
   const running = run.frame.status === 'running';

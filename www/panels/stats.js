@@ -7,8 +7,12 @@ import { $, setText, fmtInt, fmtRate } from '../ui.js';
 /** "1.23", or a dash until the engine reports a ratio. */
 const fmtRatio = (r) => (r === null || r === undefined ? '–' : r.toFixed(2));
 
+/** "beam search, depth 37 of 200", from the engine's progress of a plan being made. */
+export const planningText = (p) => `${p.stage} ${p.total ? `${p.done} of ${p.total}` : p.done}`;
+
 function resultLine(run) {
   const f = run.frame;
+  if (f.planning) return `Planning: ${planningText(f.planning)}…`;
   if (f.status === 'found') return `Found in ${f.steps} steps (optimal ${run.optimal}, ratio ${f.ratio === null ? '—' : f.ratio.toFixed(2)})`;
   if (f.status === 'capped') return `Step cap reached after ${f.steps} steps: not found`;
   return '';
@@ -38,6 +42,7 @@ export function updateStats(runs, meter, { reveal }) {
     const line = resultLine(r);
     banner.hidden = !line;
     banner.classList.toggle('capped', r.frame.status === 'capped');
+    banner.classList.toggle('planning', !!r.frame.planning);
     setText(banner, line);
   });
   if (runs.length > 1) updateScoreboard(runs, reveal);
