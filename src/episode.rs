@@ -112,6 +112,10 @@ impl TrialResult {
     }
 }
 
+/// Slices of a plan being made that [`Episode::advance`] counts as one
+/// move of work.
+pub const SLICES_PER_MOVE: u32 = 8;
+
 /// One trial, advanced move by move or loop by loop.
 pub struct Episode {
     cfg: Config,
@@ -254,7 +258,8 @@ impl Episode {
     }
 
     /// `k` loops of work, carried across decisions (for a searcher that
-    /// does not deliberate, `k` moves or slices of a plan being made),
+    /// does not deliberate, `k` moves, each or up to [`SLICES_PER_MOVE`]
+    /// slices of a plan being made),
     /// stopping early if the episode ends. Returns the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
@@ -270,9 +275,17 @@ impl Episode {
                 if moves >= max_moves || self.status != Status::Running {
                     break;
                 }
-                // False while a planner makes its plan: that was a slice.
-                if self.step_loops(1) {
-                    moves += 1;
+                // A move, or a few slices of a plan being made (each about
+                // a millisecond): one move a frame at the slowest speed
+                // would otherwise make a plan one slice a frame.
+                for _ in 0..SLICES_PER_MOVE {
+                    if self.step_loops(1) {
+                        moves += 1;
+                        break;
+                    }
+                    if self.status != Status::Running {
+                        break;
+                    }
                 }
             }
             return moves;
