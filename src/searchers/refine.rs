@@ -452,6 +452,27 @@ mod tests {
         (cfg, g)
     }
 
+    /// The moves of a lawnmower over four rows of a 12-torus, with a wasted
+    /// up-and-down after the `k`-th move of a row where `wiggle(k)`.
+    fn meander(wiggle: impl Fn(usize) -> bool) -> Vec<Move> {
+        let mut moves = Vec::new();
+        for row in 0..4 {
+            let along = if row % 2 == 0 {
+                Move::Right
+            } else {
+                Move::Left
+            };
+            for k in 0..11 {
+                moves.push(along);
+                if wiggle(k) {
+                    moves.extend([Move::Up, Move::Down]);
+                }
+            }
+            moves.extend([Move::Down; 3]);
+        }
+        moves
+    }
+
     /// A path from `start` along `moves`.
     fn walk(t: &Torus, start: u32, moves: &[Move]) -> Vec<u32> {
         let mut p = vec![start];
@@ -467,22 +488,7 @@ mod tests {
         // the refiner's totals must equal `path_mean` of the paths before
         // and after (they cover everything, so nothing is capped).
         let (cfg, g) = game(&[("n", "12"), ("sigma", "2")]);
-        let mut moves = Vec::new();
-        for row in 0..4 {
-            let along = if row % 2 == 0 {
-                Move::Right
-            } else {
-                Move::Left
-            };
-            for k in 0..11 {
-                moves.push(along);
-                if k == 5 {
-                    moves.extend([Move::Up, Move::Down]);
-                }
-            }
-            moves.extend([Move::Down; 3]);
-        }
-        let mut path = walk(&g.torus, g.start, &moves);
+        let mut path = walk(&g.torus, g.start, &meander(|k| k == 5));
         let mass = g.prior.mass();
         let before = bound::path_mean(&g.torus, &g.sensor, mass, &path);
         assert_eq!(before.uncovered, 0.0);
@@ -525,22 +531,7 @@ mod tests {
         // A meander with wasted wiggles: many changes are kept, in several
         // passes, so the slices cross pass boundaries.
         let (cfg, g) = game(&[("n", "12"), ("sigma", "3")]);
-        let mut moves = Vec::new();
-        for row in 0..4 {
-            let along = if row % 2 == 0 {
-                Move::Right
-            } else {
-                Move::Left
-            };
-            for k in 0..11 {
-                moves.push(along);
-                if k % 4 == 1 {
-                    moves.extend([Move::Up, Move::Down]);
-                }
-            }
-            moves.extend([Move::Down; 3]);
-        }
-        let path = walk(&g.torus, g.start, &moves);
+        let path = walk(&g.torus, g.start, &meander(|k| k % 4 == 1));
         let mass = g.prior.mass();
         let (cap, span) = (cfg.step_cap, path.len());
         let mut whole = path.clone();
