@@ -212,19 +212,17 @@ impl Beam {
         let Some(job) = self.job.as_deref_mut() else {
             return true;
         };
-        let k = slices as usize;
         let cap = self.step_cap as usize;
         let span = 2 * self.depth as usize;
         let pos = job.key.pos;
         let (mass, c) = (&job.key.mass[..], self.step_cap);
         let look = &mut self.look;
         let cov = &mut self.cov;
-        let mut left = k;
-        while left > 0 {
-            left -= 1;
+        // One slice of the stage under way per turn.
+        for _ in 0..slices {
             match &mut job.stage {
                 Stage::Rule(run) => {
-                    let m = MOVES_PER_SLICE.saturating_mul(k);
+                    let m = MOVES_PER_SLICE;
                     if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m) {
                         job.rule.insert(0, pos);
                         let (w, d) = (self.width as usize, self.depth as usize);
@@ -234,7 +232,7 @@ impl Beam {
                     job.sketch.clone_from(&job.rule);
                 }
                 Stage::Search(search) => {
-                    let done = search.work(torus, sensor, mass, k);
+                    let done = search.work(torus, sensor, mass, 1);
                     search.best(&mut job.head);
                     job.sketch.clear();
                     job.sketch.push(pos);
@@ -257,7 +255,7 @@ impl Beam {
                     }
                 }
                 Stage::Tail(after, run) => {
-                    let m = MOVES_PER_SLICE.saturating_mul(k);
+                    let m = MOVES_PER_SLICE;
                     let done = run.moves(look, torus, sensor, after, cov, &mut job.tail, m);
                     job.beam.clear();
                     job.beam.push(pos);
@@ -271,7 +269,7 @@ impl Beam {
                     }
                 }
                 Stage::RefineRule => {
-                    let rows = ROWS_PER_SLICE.saturating_mul(k);
+                    let rows = ROWS_PER_SLICE;
                     if job.refiner.work(torus, sensor, mass, c, WINDOW, rows) {
                         job.by_rule = job.refiner.finish(mass, c, &mut job.rule).after;
                         job.refiner.start(torus, sensor, mass, c, span, &job.beam);
@@ -280,7 +278,7 @@ impl Beam {
                     }
                 }
                 Stage::RefineBeam => {
-                    let rows = ROWS_PER_SLICE.saturating_mul(k);
+                    let rows = ROWS_PER_SLICE;
                     if job.refiner.work(torus, sensor, mass, c, WINDOW, rows) {
                         let by_beam = job.refiner.finish(mass, c, &mut job.beam).after;
                         let plan = if by_beam < job.by_rule {
