@@ -257,10 +257,11 @@ impl Episode {
         self.status
     }
 
-    /// `k` loops of work, carried across decisions (for a searcher that
-    /// does not deliberate, `k` moves, each or up to [`SLICES_PER_MOVE`]
-    /// slices of a plan being made),
-    /// stopping early if the episode ends. Returns the real moves made.
+    /// `k` loops of work, carried across decisions, stopping early if the
+    /// episode ends; for a searcher that does not deliberate, `k` moves,
+    /// where a move's worth of work may instead be up to
+    /// [`SLICES_PER_MOVE`] slices of a plan being made. Returns the real
+    /// moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
     }

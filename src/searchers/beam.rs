@@ -142,7 +142,8 @@ struct Job {
     beam: Vec<u32>,
     refiner: Refiner,
     by_rule: f64,
-    /// The path the stage under way is working on, to draw.
+    /// The path the stage under way is working on, from the searcher's
+    /// cell, to draw.
     sketch: Vec<u32>,
 }
 
@@ -228,8 +229,12 @@ impl Beam {
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
+                        job.sketch.clone_from(&job.rule);
+                    } else {
+                        job.sketch.clear();
+                        job.sketch.push(pos);
+                        job.sketch.extend_from_slice(&job.rule);
                     }
-                    job.sketch.clone_from(&job.rule);
                 }
                 Stage::Search(search) => {
                     let done = search.work(torus, sensor, mass, 1);
@@ -752,6 +757,10 @@ mod tests {
                 stages.push(p.stage);
             }
             assert_eq!(sliced.steps(), 0);
+            // The path being worked on is drawn from where the searcher is.
+            let sketch = sliced.intent();
+            assert!(sketch.len() > 1, "{p:?}");
+            assert_eq!(sketch[0], sliced.position(), "{p:?}");
         }
         assert!(sliced.planning().is_none());
         assert!(slices > 20, "{slices} slices");
