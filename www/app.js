@@ -229,6 +229,8 @@ async function boot() {
     app.panelsTs = ts;
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);
+    // A plan made in slices can be stepped a slice at a time.
+    controls.setDeliberates(runs[0].deliberates || !!runs[0].frame.planning);
     legend.update(runs[0].drawnLayers(requested));
     const known = (r) => r.frame.status === 'found' || opts.reveal;
     chart.push(app.runTime, runs.map((r) => r.frame.steps), runs.map((r) => (known(r) ? r.optimal : null)), state !== 'running');

@@ -106,7 +106,7 @@ export class Controls {
     $('speed-label').value = speedLabel(view.speed);
   }
 
-  /** Enables the loop button for runs that deliberate. */
+  /** Enables the loop button for runs that deliberate (or make a plan in slices: a slice a press). */
   setDeliberates(yes) {
     $('step-loop').disabled = !yes;
   }

@@ -644,7 +644,7 @@ test('the beam planner makes its plan in slices: the board says how far it has g
       const t0 = performance.now();
       while (performance.now() - t0 < 120_000) {
         const r = window.torusTest.runs()[0];
-        if (r?.planning) out.push({ ...r.planning, steps: r.steps, intent: r.intent.length, banner: document.querySelector('#board-0 .banner')?.textContent ?? '' });
+        if (r?.planning) out.push({ ...r.planning, steps: r.steps, intent: r.intent.length, banner: document.querySelector('#board-0 .banner')?.textContent ?? '', stepLoop: !document.getElementById('step-loop').disabled });
         if (r && r.steps > 0) break;
         await new Promise((res) => requestAnimationFrame(res));
       }
@@ -658,6 +658,7 @@ test('the beam planner makes its plan in slices: the board says how far it has g
     assert.ok(search.every((p) => p.total === 200 && p.done <= 200));
     assert.ok(seen.some((p) => p.intent > 1), 'the path being worked on is drawn');
     assert.ok(seen.some((p) => /^Planning: beam search, depth \d+ of 200…$/.test(p.banner)), seen.map((p) => p.banner).join(' | '));
+    assert.ok(seen.some((p) => p.stepLoop), 'Step loop steps a slice while the plan is made');
     // Then the plan is followed (a move takes about a microsecond, so at
     // full speed the run ends soon after) and the banner gives the result.
     await page.waitForFunction(() => window.torusTest.runs()[0].status === 'found', null, { timeout: 60_000 });
@@ -665,6 +666,7 @@ test('the beam planner makes its plan in slices: the board says how far it has g
     assert.equal(r.planning, null);
     assertUnitSteps(await mainPath(page), r.n);
     await page.waitForFunction(() => /^Found in/.test(document.querySelector('#board-0 .banner').textContent), null, { timeout: 10_000 });
+    await page.waitForFunction(() => document.getElementById('step-loop').disabled, null, { timeout: 10_000 });
   });
 });
 
