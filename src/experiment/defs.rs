@@ -101,7 +101,7 @@ pub struct Definition {
     pub chart: Chart,
     /// Trials (samples) per point unless the spec says otherwise.
     pub default_trials: u64,
-    /// Parameter values after [`COMMON_DEFAULTS`], before the spec's params.
+    /// Parameter values after `COMMON_DEFAULTS`, before the spec's params.
     pub defaults: &'static [(&'static str, &'static str)],
     /// The swept parameter; `None` for one x value.
     pub x: Option<XDef>,

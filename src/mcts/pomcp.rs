@@ -6,7 +6,7 @@
 //! sequence of moves and the belief after it is the prior with every disc
 //! the path has swept removed. The cost is the number of moves until
 //! detection, whose expectation from the searcher's cell along a path
-//! x₀ x₁ x₂ … is E[T] = Σₜ Rₜ, where Rₜ is the posterior mass the path has
+//! x₀ x₁ x₂ … is E\[T\] = Σₜ Rₜ, where Rₜ is the posterior mass the path has
 //! not yet covered after t moves (R₀ = 1).
 //!
 //! **The rules.** Before each real move the searcher runs L loops. Each loop
@@ -35,7 +35,7 @@
 //! the new normaliser).
 //!
 //! **The return.** Sampling τ, the practice target's detection time, alone
-//! is the POMCP return, but its spread (≈ E[T] itself) drowns the few
+//! is the POMCP return, but its spread (≈ E\[T\] itself) drowns the few
 //! steps by which two moves differ. Because the coverage walk never looks
 //! at the practice target, the path is independent of it and
 //! E[τ | path] = Σₜ Rₜ: the Rao-Blackwellised return (the expectation of
@@ -44,7 +44,7 @@
 //! uncovered, up to the first step H where Rₜ ≤ `pomcp_exact`, and leaves
 //! the thin tail to the practice target:
 //! G = Σ_{t<H} Rₜ + 1{τ > H}·(τ − H),
-//! which is unbiased for the path's E[T] since P(τ > t | path) = Rₜ. With
+//! which is unbiased for the path's E\[T\] since P(τ > t | path) = Rₜ. With
 //! `pomcp_exact = 1` it is the sampled τ of plain POMCP; with 0 (the
 //! default) it is Σ Rₜ, the same for every practice target.
 //!

@@ -29,6 +29,12 @@
 //! A plan depends only on the planning mass left, the cell, the last move
 //! and the parameters. So the last few plans are kept for the process
 //! ([`PLANS`]), and trials of one configuration make the plan once.
+//!
+//! # Slices
+//! The plan is made in slices of about a millisecond (a few horizon moves,
+//! partial paths or first moves of refinement), one per loop `think` is
+//! asked for, so a page's worker answers between them and shows the
+//! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
 use super::horizon::{decide, Completion, Lookahead};
 use super::refine::Refiner;
