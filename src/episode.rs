@@ -112,8 +112,9 @@ impl TrialResult {
     }
 }
 
-/// Slices of a plan being made that [`Episode::advance`] counts as one
-/// move of work.
+/// Slices of a plan being made (about a millisecond each) that end a call of
+/// [`Episode::advance`]: one move's worth of work at a set speed, and a
+/// bound on the call at any `k`.
 pub const SLICES_PER_MOVE: u32 = 8;
 
 /// One trial, advanced move by move or loop by loop.
@@ -258,10 +259,9 @@ impl Episode {
     }
 
     /// `k` loops of work, carried across decisions, stopping early if the
-    /// episode ends; for a searcher that does not deliberate, `k` moves,
-    /// where a move's worth of work may instead be up to
-    /// [`SLICES_PER_MOVE`] slices of a plan being made. Returns the real
-    /// moves made.
+    /// episode ends; for a searcher that does not deliberate, `k` moves or
+    /// slices of a plan being made, stopping after [`SLICES_PER_MOVE`]
+    /// slices. Returns the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
     }
@@ -272,19 +272,20 @@ impl Episode {
     pub fn advance_within(&mut self, k: u64, max_moves: u64) -> u64 {
         let mut moves = 0;
         if !self.info.deliberates {
+            let mut slices = 0;
             for _ in 0..k {
                 if moves >= max_moves || self.status != Status::Running {
                     break;
                 }
-                // A move, or a few slices of a plan being made (each about
-                // a millisecond): one move a frame at the slowest speed
-                // would otherwise make a plan one slice a frame.
-                for _ in 0..SLICES_PER_MOVE {
-                    if self.step_loops(1) {
-                        moves += 1;
-                        break;
-                    }
-                    if self.status != Status::Running {
+                if self.step_loops(1) {
+                    moves += 1;
+                } else if self.status == Status::Running {
+                    // A slice of a plan being made. A few of them are one
+                    // move's worth of work, and end the call: the caller
+                    // sized `k` for moves of microseconds, not slices of
+                    // a millisecond.
+                    slices += 1;
+                    if slices == SLICES_PER_MOVE {
                         break;
                     }
                 }

@@ -234,13 +234,18 @@ pub struct Frame<'a> {
     /// The practice target of the newest trace.
     pub practice: Option<u32>,
     /// The cells a planner means to enter next, as little-endian u32 cells
-    /// (when asked and the searcher plans a path).
+    /// (when asked and the searcher plans a path; the first [`MAX_INTENT`]).
     pub intent: Option<Bytes<'a>>,
     /// How a planner scored the four moves at its last decision.
     pub scores: Option<MoveScores>,
     /// How far the plan being made has got, while a planner makes one.
     pub planning: Option<Planning>,
 }
+
+/// The most cells of a planner's intended path a frame carries: a plan can
+/// run to the end of the search (a third of N² cells and more), which no
+/// frame should copy and no board draw, at every frame.
+pub const MAX_INTENT: usize = 4096;
 
 /// Keys are masked to 53 bits so a JS number holds them exactly.
 const KEY_MASK: u64 = (1 << 53) - 1;
@@ -375,7 +380,8 @@ impl FrameBuilder {
         };
 
         let intent = if req.intent && !ep.intent().is_empty() {
-            le_bytes(ep.intent(), &mut self.intent);
+            let cells = ep.intent();
+            le_bytes(&cells[..cells.len().min(MAX_INTENT)], &mut self.intent);
             Some(Bytes(&self.intent[..]))
         } else {
             None
@@ -574,6 +580,39 @@ mod tests {
             held,
             "paused shows every change"
         );
+    }
+
+    #[test]
+    fn a_frame_carries_at_most_max_intent_cells_of_a_plan() {
+        // A beam plan over a uniform 120-torus runs to about 4 800 cells; a
+        // cheap one (width and depth 1, horizon 2).
+        let mut cfg = Config::default();
+        for (k, v) in [
+            ("n", "120"),
+            ("prior", "uniform"),
+            ("searcher", "beam"),
+            ("beam_width", "1"),
+            ("beam_depth", "1"),
+            ("horizon", "2"),
+        ] {
+            cfg.set(k, v).unwrap();
+        }
+        let mut ep = Episode::new(&cfg).unwrap();
+        ep.step_move();
+        assert!(ep.intent().len() > MAX_INTENT, "{}", ep.intent().len());
+        let mut fb = FrameBuilder::new((cfg.n * cfg.n) as usize);
+        let f = fb.frame(
+            &ep,
+            &FrameRequest {
+                intent: true,
+                ..FrameRequest::default()
+            },
+            0.0,
+        );
+        let bytes = f.intent.unwrap().0;
+        assert_eq!(bytes.len(), 4 * MAX_INTENT);
+        let first = u32::from_le_bytes(bytes[0..4].try_into().unwrap());
+        assert_eq!(first, ep.intent()[0]);
     }
 
     #[test]

@@ -116,8 +116,12 @@ pub struct Beam {
     job: Option<Box<Job>>,
 }
 
-/// Moves of the horizon rule per slice of planning.
-const MOVES_PER_SLICE: usize = 8;
+/// Moves of the horizon rule per slice of planning: 8 at N = 40, fewer on
+/// larger lattices (a move's fallback goal is a scan of the lattice), and
+/// one from N = 128 on.
+fn moves_per_slice(cells: usize) -> usize {
+    (12_800 / cells.max(1)).clamp(1, 8)
+}
 /// First moves of refinement per slice of planning.
 const ROWS_PER_SLICE: usize = 2;
 
@@ -140,16 +144,17 @@ enum Stage {
 struct Job {
     key: PlanKey,
     stage: Stage,
-    /// The rule's path, the beam's head and tail, and the beam's path
-    /// (each whole path from the searcher's cell).
+    /// The rule's path and the beam's (each from the searcher's cell, and
+    /// each growing while it is made), and the beam search's best partial
+    /// path so far.
     rule: Vec<u32>,
-    head: Vec<u32>,
-    tail: Vec<u32>,
     beam: Vec<u32>,
+    head: Vec<u32>,
     refiner: Refiner,
     by_rule: f64,
-    /// The path the stage under way is working on, from the searcher's
-    /// cell, to draw.
+    /// The beam search's best partial path from the searcher's cell, to
+    /// draw (the other stages draw the path they work on in place: a copy
+    /// a slice would cost the path's length each slice).
     sketch: Vec<u32>,
 }
 
@@ -203,10 +208,9 @@ impl Beam {
         self.job = Some(Box::new(Job {
             key,
             stage: Stage::Rule(run),
-            rule: Vec::new(),
-            head: Vec::new(),
-            tail: Vec::new(),
+            rule: vec![pos],
             beam: Vec::new(),
+            head: Vec::new(),
             refiner: Refiner::default(),
             by_rule: 0.0,
             sketch: Vec::new(),
@@ -229,17 +233,13 @@ impl Beam {
         for _ in 0..slices {
             match &mut job.stage {
                 Stage::Rule(run) => {
-                    let m = MOVES_PER_SLICE;
+                    let m = moves_per_slice(torus.cells());
                     if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m) {
-                        job.rule.insert(0, pos);
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
-                        job.sketch.clone_from(&job.rule);
-                    } else {
                         job.sketch.clear();
                         job.sketch.push(pos);
-                        job.sketch.extend_from_slice(&job.rule);
                     }
                 }
                 Stage::Search(search) => {
@@ -261,21 +261,14 @@ impl Beam {
                         };
                         let rest = cap.saturating_sub(job.head.len());
                         let run = Completion::new(&after, end, last, rest);
-                        job.tail.clear();
+                        job.beam.clone_from(&job.sketch);
                         job.stage = Stage::Tail(Box::new(after), run);
                     }
                 }
                 Stage::Tail(after, run) => {
-                    let m = MOVES_PER_SLICE;
-                    let done = run.moves(look, torus, sensor, after, cov, &mut job.tail, m);
-                    job.beam.clear();
-                    job.beam.push(pos);
-                    job.beam.extend_from_slice(&job.head);
-                    job.beam.extend_from_slice(&job.tail);
-                    job.sketch.clone_from(&job.beam);
-                    if done {
+                    let m = moves_per_slice(torus.cells());
+                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m) {
                         job.refiner.start(torus, sensor, mass, c, span, &job.rule);
-                        job.sketch.clone_from(&job.rule);
                         job.stage = Stage::RefineRule;
                     }
                 }
@@ -284,7 +277,6 @@ impl Beam {
                     if job.refiner.work(torus, sensor, mass, c, WINDOW, rows) {
                         job.by_rule = job.refiner.finish(mass, c, &mut job.rule).after;
                         job.refiner.start(torus, sensor, mass, c, span, &job.beam);
-                        job.sketch.clone_from(&job.beam);
                         job.stage = Stage::RefineBeam;
                     }
                 }
@@ -319,9 +311,13 @@ impl Beam {
     fn progress(&self) -> Option<Planning> {
         let job = self.job.as_deref()?;
         let (stage, done, total) = match &job.stage {
-            Stage::Rule(_) => ("horizon rule's path", job.rule.len(), 0),
+            Stage::Rule(_) => ("horizon rule's path", job.rule.len() - 1, 0),
             Stage::Search(s) => ("beam search, depth", s.level, self.depth as usize),
-            Stage::Tail(..) => ("finishing the beam's path", job.tail.len(), 0),
+            Stage::Tail(..) => (
+                "finishing the beam's path",
+                job.beam.len() - job.sketch.len(),
+                0,
+            ),
             Stage::RefineRule | Stage::RefineBeam => {
                 let (pass, i, len) = job.refiner.progress();
                 let stage = match (&job.stage, pass) {
@@ -717,8 +713,12 @@ impl Searcher for Beam {
     }
 
     fn intent(&self) -> &[u32] {
-        match &self.job {
-            Some(job) => &job.sketch,
+        match self.job.as_deref() {
+            Some(job) => match job.stage {
+                Stage::Rule(_) | Stage::RefineRule => &job.rule,
+                Stage::Search(_) => &job.sketch,
+                Stage::Tail(..) | Stage::RefineBeam => &job.beam,
+            },
             None => &self.plan[self.next.min(self.plan.len())..],
         }
     }
@@ -765,8 +765,7 @@ mod tests {
             assert_eq!(sliced.steps(), 0);
             // The path being worked on is drawn from where the searcher is.
             let sketch = sliced.intent();
-            assert!(sketch.len() > 1, "{p:?}");
-            assert_eq!(sketch[0], sliced.position(), "{p:?}");
+            assert_eq!(sketch.first(), Some(&sliced.position()), "{p:?}");
         }
         assert!(sliced.planning().is_none());
         assert!(slices > 20, "{slices} slices");

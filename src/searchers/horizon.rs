@@ -243,6 +243,8 @@ pub struct Completion {
     left: u32,
     p: u32,
     last: Option<Move>,
+    /// Moves made so far, and the most allowed.
+    made: usize,
     cap: usize,
 }
 
@@ -253,13 +255,14 @@ impl Completion {
             left: super::plan::mass_cells_left(belief),
             p: pos,
             last,
+            made: 0,
             cap,
         }
     }
 
-    /// Adds up to `k` moves to `out` (cleared by the caller before the
-    /// first slice), with the arguments of [`completion`]. True when the
-    /// completion is done (and `cov` is cleared).
+    /// Appends up to `k` more moves to `out`, with the arguments of
+    /// [`completion`]. True when the completion is done (and `cov` is
+    /// cleared).
     #[allow(clippy::too_many_arguments)]
     pub fn moves(
         &mut self,
@@ -272,16 +275,17 @@ impl Completion {
         k: usize,
     ) -> bool {
         for _ in 0..k {
-            if self.left == 0 || out.len() >= self.cap {
+            if self.left == 0 || self.made >= self.cap {
                 break;
             }
             let (m, _, _) = decide(look, torus, sensor, belief, cov, self.p, self.last, false);
             self.p = torus.step(self.p, m);
             self.left -= cov.cover_counted(sensor, belief, self.p).1;
             out.push(self.p);
+            self.made += 1;
             self.last = Some(m);
         }
-        let done = self.left == 0 || out.len() >= self.cap;
+        let done = self.left == 0 || self.made >= self.cap;
         if done {
             cov.clear();
         }
