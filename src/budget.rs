@@ -53,6 +53,11 @@ impl Budget {
         self.clock = clock;
     }
 
+    /// The clock's time now, in milliseconds.
+    pub fn now(&self) -> f64 {
+        (self.clock)()
+    }
+
     /// True while a decision is under way.
     pub fn is_open(&self) -> bool {
         self.t0.is_some()

@@ -112,10 +112,15 @@ impl TrialResult {
     }
 }
 
-/// Slices of a plan being made (about a millisecond each) that end a call of
-/// [`Episode::advance`]: one move's worth of work at a set speed, and a
-/// bound on the call at any `k`.
+/// Slices of a plan being made (about a millisecond each at N = 40) that
+/// end a call of [`Episode::advance`]: one move's worth of work at a set
+/// speed, and a bound on the call at any `k`.
 pub const SLICES_PER_MOVE: u32 = 8;
+
+/// Milliseconds on the episode's clock after which a call of
+/// [`Episode::advance`] makes no further slice of a plan (slices are longer
+/// on large lattices).
+pub const PLAN_CALL_MS: f64 = 8.0;
 
 /// One trial, advanced move by move or loop by loop.
 pub struct Episode {
@@ -259,9 +264,10 @@ impl Episode {
     }
 
     /// `k` loops of work, carried across decisions, stopping early if the
-    /// episode ends; for a searcher that does not deliberate, `k` moves or
-    /// slices of a plan being made, stopping after [`SLICES_PER_MOVE`]
-    /// slices. Returns the real moves made.
+    /// episode ends; for a searcher that does not deliberate, `k` moves,
+    /// where a move may instead be slices of a plan being made, the call
+    /// stopping after [`SLICES_PER_MOVE`] slices or [`PLAN_CALL_MS`]. Returns
+    /// the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
     }
@@ -272,23 +278,26 @@ impl Episode {
     pub fn advance_within(&mut self, k: u64, max_moves: u64) -> u64 {
         let mut moves = 0;
         if !self.info.deliberates {
-            let mut slices = 0;
-            for _ in 0..k {
+            let (mut slices, t0) = (0, self.budget.now());
+            'calls: for _ in 0..k {
                 if moves >= max_moves || self.status != Status::Running {
                     break;
                 }
-                if self.step_loops(1) {
-                    moves += 1;
-                } else if self.status == Status::Running {
-                    // A slice of a plan being made. A few of them are one
-                    // move's worth of work, and end the call: the caller
-                    // sized `k` for moves of microseconds, not slices of
-                    // a millisecond.
+                // A move, or slices of a plan being made until it is made,
+                // or the call has done SLICES_PER_MOVE of them or spent
+                // PLAN_CALL_MS: the caller sized `k` for moves of
+                // microseconds, not slices of a millisecond (or more on a
+                // large lattice), and at the slowest speed (k = 1) one
+                // slice a frame would take minutes. Only the pace depends
+                // on the clock, never the plan.
+                while !self.step_loops(1) {
                     slices += 1;
-                    if slices == SLICES_PER_MOVE {
-                        break;
+                    let spent = self.budget.now() - t0 >= PLAN_CALL_MS;
+                    if self.status != Status::Running || slices == SLICES_PER_MOVE || spent {
+                        break 'calls;
                     }
                 }
+                moves += 1;
             }
             return moves;
         }

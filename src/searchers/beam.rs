@@ -794,6 +794,39 @@ mod tests {
     }
 
     #[test]
+    fn an_advance_call_makes_eight_slices_of_a_plan_whatever_k() {
+        // At the slowest speed (k = 1) and when the worker asks for many
+        // microsecond moves (k = 1000) alike: SLICES_PER_MOVE slices, here
+        // of 8 horizon moves each while the rule's path is made.
+        let mut cfg = Config::default();
+        for (k, v) in [
+            ("n", "30"),
+            ("prior", "uniform"),
+            ("searcher", "beam"),
+            ("beam_width", "4"),
+            ("beam_depth", "10"),
+        ] {
+            cfg.set(k, v).unwrap();
+        }
+        let per = crate::episode::SLICES_PER_MOVE * 8;
+        let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
+        // A clock that stands still: only the slice count ends a call.
+        ep.set_clock(|| 0.0);
+        for (k, done) in [(1, per), (1000, 2 * per)] {
+            assert_eq!(ep.advance(k), 0);
+            let p = ep.planning().unwrap();
+            assert_eq!((p.stage, p.done), ("horizon rule's path", done), "k {k}");
+        }
+        // A clock that gains 5 ms at every reading: the call stops at the
+        // first reading past PLAN_CALL_MS (8 ms), after two slices.
+        static TICKS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        ep.set_clock(|| 5.0 * TICKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) as f64);
+        ep.advance(1000);
+        let p = ep.planning().unwrap();
+        assert_eq!(p.done, 2 * per + 2 * 8);
+    }
+
+    #[test]
     fn front_and_reach_follow_the_radius() {
         let t = Torus::new(12).unwrap();
         for (rv, front, reach) in [(0.0, 1, 0), (1.0, 3, 1), (1.5, 3, 2), (2.0, 5, 2)] {
