@@ -145,11 +145,9 @@ struct Job {
     key: PlanKey,
     stage: Stage,
     /// The rule's path and the beam's (each from the searcher's cell, and
-    /// each growing while it is made), and the beam search's best partial
-    /// path so far.
+    /// each growing while it is made).
     rule: Vec<u32>,
     beam: Vec<u32>,
-    head: Vec<u32>,
     refiner: Refiner,
     by_rule: f64,
     /// The beam search's best partial path from the searcher's cell, to
@@ -210,7 +208,6 @@ impl Beam {
             stage: Stage::Rule(run),
             rule: vec![pos],
             beam: Vec::new(),
-            head: Vec::new(),
             refiner: Refiner::default(),
             by_rule: 0.0,
             sketch: Vec::new(),
@@ -243,23 +240,21 @@ impl Beam {
                     }
                 }
                 Stage::Search(search) => {
-                    let done = search.work(torus, sensor, mass, 1);
-                    search.best(&mut job.head);
-                    job.sketch.clear();
-                    job.sketch.push(pos);
-                    job.sketch.extend_from_slice(&job.head);
+                    let done = search.work(torus, sensor, mass);
+                    search.best(&mut job.sketch);
                     if done {
+                        // The sketch is the searcher's cell, then the head.
+                        let (head, n) = (&job.sketch[1..], job.sketch.len());
                         let mut after = belief.clone();
-                        for &c in &job.head {
+                        for &c in head {
                             after.search_around(sensor, c);
                         }
-                        let end = job.head.last().copied().unwrap_or(pos);
-                        let last = match job.head.len() {
-                            0 => self.last,
-                            1 => torus.move_to(pos, end),
-                            n => torus.move_to(job.head[n - 2], end),
+                        let end = job.sketch[n - 1];
+                        let last = match n {
+                            1 => self.last,
+                            _ => torus.move_to(job.sketch[n - 2], end),
                         };
-                        let rest = cap.saturating_sub(job.head.len());
+                        let rest = cap.saturating_sub(head.len());
                         let run = Completion::new(&after, end, last, rest);
                         job.beam.clone_from(&job.sketch);
                         job.stage = Stage::Tail(Box::new(after), run);
@@ -456,11 +451,11 @@ impl BeamSearch {
         }
     }
 
-    /// Expands up to `slices` · [`NODES_PER_SLICE`] partial paths, ending
+    /// One slice: expands up to [`NODES_PER_SLICE`] partial paths, ending
     /// each depth by keeping the best children. True when the search is
     /// done (the depth reached, every cell covered, or no child left).
-    fn work(&mut self, torus: &Torus, sensor: &Sensor, mass: &[f64], slices: usize) -> bool {
-        let mut budget = slices.saturating_mul(NODES_PER_SLICE);
+    fn work(&mut self, torus: &Torus, sensor: &Sensor, mass: &[f64]) -> bool {
+        let mut budget = NODES_PER_SLICE;
         while !self.done && budget > 0 {
             if self.at == 0 {
                 if self.nodes[0].left == 0 {
@@ -588,15 +583,15 @@ impl BeamSearch {
     }
 
     /// The best partial path of the last depth finished, as the cells it
-    /// enters, written into `out`.
+    /// enters, written into `out` after its first cell (the searcher's).
     fn best(&self, out: &mut Vec<u32>) {
-        out.clear();
+        out.truncate(1);
         let mut h = self.nodes[0].hist;
         while h != usize::MAX {
             out.push(self.hist[h].1);
             h = self.hist[h].0;
         }
-        out.reverse();
+        out[1..].reverse();
     }
 }
 
