@@ -180,6 +180,21 @@ unsafe fn choose(val: &[u32], q: &[u32], k: usize) -> u32 {
     key(0).min(key(1)).min(key(2).min(key(3))) as u32
 }
 
+/// Counts a visit to `cell` in `val` and lists the cell in `seen` on its
+/// first visit of the walk (`len` cells listed so far).
+///
+/// # Safety
+/// `cell < val.len()` and `*len < seen.len()`.
+#[inline(always)]
+unsafe fn record(val: &mut [u32], seen: &mut [u32], len: &mut usize, cell: usize) {
+    let v = val.get_unchecked_mut(cell);
+    let first = *v == 0;
+    *v += 1;
+    // Written every time, kept only on a first visit: no branch in the walk.
+    *seen.get_unchecked_mut(*len) = cell as u32;
+    *len += first as usize;
+}
+
 /// NSARW with its own visit counts.
 ///
 /// One word per cell holds its visits in the current walk, and a list holds
@@ -216,14 +231,15 @@ impl Nsarw {
     }
 
     /// Records a visit to `cell`.
+    ///
+    /// # Panics
+    /// If `cell` is outside the walk's lattice.
     #[inline]
     pub fn enter(&mut self, cell: u32) {
-        let v = &mut self.val[cell as usize];
-        if *v == 0 {
-            self.seen[self.len] = cell;
-            self.len += 1;
-        }
-        *v += 1;
+        assert!((cell as usize) < self.val.len());
+        // SAFETY: asserted just above; `len` counts distinct cells, so
+        // len ≤ val.len() < seen.len().
+        unsafe { record(&mut self.val, &mut self.seen, &mut self.len, cell as usize) };
     }
 
     /// A uniformly random move among the least-visited neighbours.
@@ -304,12 +320,7 @@ impl Nsarw {
                 let q = nbr.get_unchecked(e as usize..e as usize + 4);
                 e = choose(val, q, k) & ((1 << RANK_SHIFT) - 1);
                 let cell = (e >> 2) as usize;
-                let v = val.get_unchecked_mut(cell);
-                let first = *v == 0;
-                *v += 1;
-                // Written every step, kept only on a first visit: no branch.
-                *seen.get_unchecked_mut(len) = cell as u32;
-                len += first as usize;
+                record(val, seen, &mut len, cell);
                 visit.visit(cell as u32, steps);
                 if *mask.get_unchecked(cell) != 0 {
                     out = Outcome {
