@@ -936,9 +936,10 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
 /// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move.
 fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     use torus_search::bench::{move_cases, MoveRunner};
-    // A planner that makes its plan in slices: each call of one slice (the
-    // page's worker asks for one at a time), timed over trial 0's plan.
-    // First, before the moves below keep that plan for the process.
+    // A planner that makes its plan in slices: each slice timed alone (one
+    // call of the page's worker makes up to `PLAN_CALL_SLICES` of them),
+    // over trial 0's plan. First, before the moves below keep that plan for
+    // the process.
     let mut slices = Vec::new();
     if !json {
         out!(

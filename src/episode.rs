@@ -112,10 +112,10 @@ impl TrialResult {
     }
 }
 
-/// Slices of a plan being made (about a millisecond each at N = 40) that
-/// end a call of [`Episode::advance`]: one move's worth of work at a set
-/// speed, and a bound on the call at any `k`.
-pub const SLICES_PER_MOVE: u32 = 8;
+/// Slices of a plan being made (about a millisecond each at N = 40) after
+/// which a call of [`Episode::advance`] stops, at any `k`: at a set speed
+/// (k moves a frame) a frame's worth of planning.
+pub const PLAN_CALL_SLICES: u32 = 8;
 
 /// Milliseconds on the episode's clock after which a call of
 /// [`Episode::advance`] makes no further slice of a plan (slices are longer
@@ -266,7 +266,7 @@ impl Episode {
     /// `k` loops of work, carried across decisions, stopping early if the
     /// episode ends; for a searcher that does not deliberate, `k` moves,
     /// where a move may instead be slices of a plan being made, the call
-    /// stopping after [`SLICES_PER_MOVE`] slices or [`PLAN_CALL_MS`]. Returns
+    /// stopping after [`PLAN_CALL_SLICES`] slices or [`PLAN_CALL_MS`]. Returns
     /// the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
@@ -284,7 +284,7 @@ impl Episode {
                     break;
                 }
                 // A move, or slices of a plan being made until it is made,
-                // or the call has done SLICES_PER_MOVE of them or spent
+                // or the call has done PLAN_CALL_SLICES of them or spent
                 // PLAN_CALL_MS: the caller sized `k` for moves of
                 // microseconds, not slices of a millisecond (or more on a
                 // large lattice), and at the slowest speed (k = 1) one
@@ -293,7 +293,7 @@ impl Episode {
                 while !self.step_loops(1) {
                     slices += 1;
                     let spent = self.budget.now() - t0 >= PLAN_CALL_MS;
-                    if self.status != Status::Running || slices == SLICES_PER_MOVE || spent {
+                    if self.status != Status::Running || slices == PLAN_CALL_SLICES || spent {
                         break 'calls;
                     }
                 }

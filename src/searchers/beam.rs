@@ -791,7 +791,7 @@ mod tests {
     #[test]
     fn an_advance_call_makes_eight_slices_of_a_plan_whatever_k() {
         // At the slowest speed (k = 1) and when the worker asks for many
-        // microsecond moves (k = 1000) alike: SLICES_PER_MOVE slices, here
+        // microsecond moves (k = 1000) alike: PLAN_CALL_SLICES slices, here
         // of 8 horizon moves each while the rule's path is made.
         let mut cfg = Config::default();
         for (k, v) in [
@@ -803,7 +803,7 @@ mod tests {
         ] {
             cfg.set(k, v).unwrap();
         }
-        let per = crate::episode::SLICES_PER_MOVE * 8;
+        let per = crate::episode::PLAN_CALL_SLICES * 8;
         let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
         // A clock that stands still: only the slice count ends a call.
         ep.set_clock(|| 0.0);
