@@ -263,6 +263,19 @@ impl Episode {
         self.status
     }
 
+    /// Works toward one real move in a call of bounded length: a searcher
+    /// that deliberates completes its decision (its loops or time budget
+    /// bound it), a planner makes its move or at most [`PLAN_CALL_SLICES`]
+    /// slices of its plan (see [`Episode::advance`]). Returns true once the
+    /// move is made or the episode has ended.
+    pub fn step_move_bounded(&mut self) -> bool {
+        if self.info.deliberates {
+            self.step_move();
+            return true;
+        }
+        self.advance_within(1, 1) == 1 || self.status != Status::Running
+    }
+
     /// `k` loops of work, carried across decisions, stopping early if the
     /// episode ends; for a searcher that does not deliberate, `k` moves,
     /// where a move may instead be slices of a plan being made, the call

@@ -13,6 +13,8 @@ pub struct Race {
     runs: Vec<Episode>,
     /// For each run, the run whose moves pace it.
     pacer: Vec<Option<usize>>,
+    /// For each run, the moves "Step move" has asked it to have made.
+    asked: Vec<u32>,
 }
 
 /// How many runs a race holds at most.
@@ -44,7 +46,8 @@ impl Race {
                     .flatten()
             })
             .collect();
-        Ok(Race { runs, pacer })
+        let asked = vec![0; runs.len()];
+        Ok(Race { runs, pacer, asked })
     }
 
     /// The runs.
@@ -87,11 +90,39 @@ impl Race {
         }
     }
 
-    /// Finishes the decision under way and makes one real move, on every unfinished run.
+    /// Finishes the decision under way and makes one real move, on every
+    /// unfinished run, in one call however long a plan takes to make.
     pub fn step_move(&mut self) {
-        for r in &mut self.runs {
-            r.step_move();
+        self.ask_move();
+        while !self.make_asked_moves() {}
+    }
+
+    /// Asks every unfinished run for one more real move than it has made or
+    /// was already asked for; [`Race::make_asked_moves`] makes them.
+    pub fn ask_move(&mut self) {
+        for (r, asked) in self.runs.iter().zip(&mut self.asked) {
+            if r.status() == Status::Running {
+                *asked = (*asked).max(r.steps()) + 1;
+            }
         }
+    }
+
+    /// One call of bounded length toward the moves asked for (see
+    /// [`Episode::step_move_bounded`]): a planner makes at most
+    /// [`crate::episode::PLAN_CALL_SLICES`] slices of its plan, so the page's
+    /// worker can answer between calls. Returns true once every run has
+    /// made them or ended.
+    pub fn make_asked_moves(&mut self) -> bool {
+        let mut done = true;
+        for (r, &asked) in self.runs.iter_mut().zip(&self.asked) {
+            while r.status() == Status::Running && r.steps() < asked {
+                if !r.step_move_bounded() {
+                    done = false;
+                    break;
+                }
+            }
+        }
+        done
     }
 }
 
@@ -131,6 +162,67 @@ mod tests {
         }
         assert!(planned_behind, "the plan was made while the MCTS run moved");
         assert_ne!(race.runs()[1].status(), Status::Running);
+    }
+
+    #[test]
+    fn step_move_is_made_in_calls_of_bounded_length_while_a_plan_is_made() {
+        // "Step move" on a race of MCTS and a planner that has yet to make
+        // its plan: the page's worker answers between calls, so no call may
+        // make the whole plan. (A configuration no other test plans: plans
+        // are kept for the process.)
+        let mcts = Config {
+            n: 13,
+            loops: 10,
+            ..Config::default()
+        };
+        let mut beam = mcts.clone();
+        for (k, v) in [
+            ("searcher", "beam"),
+            ("beam_width", "6"),
+            ("beam_depth", "17"),
+        ] {
+            beam.set(k, v).unwrap();
+        }
+        let mut race = Race::new(&[mcts.clone(), beam.clone()]).unwrap();
+        // A clock that stands still: only the slice count ends a call.
+        for r in race.runs_mut() {
+            r.set_clock(|| 0.0);
+        }
+        race.ask_move();
+        let mut calls = 0;
+        let mut last = None;
+        while !race.make_asked_moves() {
+            calls += 1;
+            let [a, b] = [&race.runs()[0], &race.runs()[1]];
+            assert_eq!(
+                a.steps(),
+                1,
+                "the MCTS run makes its move in the first call"
+            );
+            assert_eq!(b.steps(), 0, "no move before the plan is made");
+            let p = b.planning().expect("still planning");
+            let at = Some((p.stage, p.done));
+            assert_ne!(at, last, "each call works on the plan");
+            last = at;
+        }
+        assert!(calls >= 3, "the plan took {calls} calls");
+        assert_eq!(race.runs()[0].steps(), 1);
+        assert_eq!(race.runs()[1].steps(), 1);
+        assert!(race.runs()[1].planning().is_none());
+        // Asked twice, two moves; with the plan made, in one call.
+        race.ask_move();
+        race.ask_move();
+        assert!(race.make_asked_moves());
+        assert_eq!(race.runs()[0].steps(), 3);
+        assert_eq!(race.runs()[1].steps(), 3);
+        // The same moves as step_move, which makes them in one call.
+        let mut whole = Race::new(&[mcts, beam]).unwrap();
+        for _ in 0..3 {
+            whole.step_move();
+        }
+        for i in 0..2 {
+            assert_eq!(whole.runs()[i].path(), race.runs()[i].path(), "run {i}");
+        }
     }
 
     #[test]

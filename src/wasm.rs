@@ -629,6 +629,18 @@ impl Race {
         self.race.step_move();
     }
 
+    /// Asks each unfinished run for one more real move; `makeAskedMoves` makes it.
+    #[wasm_bindgen(js_name = askMove)]
+    pub fn ask_move(&mut self) {
+        self.race.ask_move();
+    }
+
+    /// One call of bounded length toward the moves asked for; true once all are made.
+    #[wasm_bindgen(js_name = makeAskedMoves)]
+    pub fn make_asked_moves(&mut self) -> bool {
+        self.race.make_asked_moves()
+    }
+
     /// How many runs are still searching.
     pub fn running(&self) -> u32 {
         self.race.running() as u32

@@ -231,6 +231,34 @@ fn the_facade_matches_the_core_episode_exactly() {
 }
 
 #[wasm_bindgen_test]
+fn step_move_on_a_planner_is_made_in_calls_of_bounded_length() {
+    // The worker's Step move: askMove, then makeAskedMoves until it says
+    // the move is made, answering other requests between calls.
+    let json = r#"{"n":14,"searcher":"beam","beam_width":8,"beam_depth":30,"seed":"4"}"#;
+    let mut r = race(&format!("[{json}]"));
+    r.ask_move();
+    let mut calls = 0;
+    while !r.make_asked_moves() {
+        calls += 1;
+        let f = frames(&mut r, "[{}]").remove(0);
+        assert_eq!(num(&f, "steps"), 0.0);
+        assert!(!get(&f, "planning").is_null(), "still planning");
+    }
+    assert!(calls >= 2, "the plan took {calls} calls");
+    assert_eq!(num(&frames(&mut r, "[{}]")[0], "steps"), 1.0);
+    // The same move as the core makes in one call.
+    let cfg: Config = serde_json::from_str(json).unwrap();
+    let mut core = CoreEpisode::new(&cfg).unwrap();
+    core.step_move();
+    let exported = js_sys::Array::from(&r.export().map_err(JsValue::from).unwrap()).get(0);
+    let path: Vec<u32> = js_sys::Array::from(&get(&exported, "path"))
+        .iter()
+        .map(|c| c.as_f64().unwrap() as u32)
+        .collect();
+    assert_eq!(path, core.path());
+}
+
+#[wasm_bindgen_test]
 fn walkers_race_and_time_budgets() {
     let mut r = race(r#"[{"n":10,"loops":10,"seed":"2"},{"n":10,"searcher":"nsarw","seed":"2"}]"#);
     let info = js_sys::Array::from(&r.describe().map_err(JsValue::from).unwrap());

@@ -47,6 +47,7 @@ export class Controller {
     this.dirty = true;
     this.wantFrame = false;
     this.inflight = false;
+    this.stepping = 0; // steps the worker has yet to answer
     this.resets = 0;
     this.ready = Promise.resolve(false);
     this.meter = { frames: [], loops: [], steps: [], fps: 0, loopsPerS: 0, stepsPerS: 0 };
@@ -201,8 +202,16 @@ export class Controller {
     if (!this.isLive() || !this.runs.length) return;
     this.pause();
     const runs = this.runs;
-    const answer = await this.send(type, { requests: this.requests(runs) });
-    this.take(answer, runs);
+    // A move a planner has yet to plan can take seconds: ask for frames
+    // meanwhile, so its progress shows.
+    this.stepping++;
+    this.redraw();
+    try {
+      const answer = await this.send(type, { requests: this.requests(runs) });
+      this.take(answer, runs);
+    } finally {
+      this.stepping--;
+    }
   }
 
   requests(runs) {
@@ -251,7 +260,7 @@ export class Controller {
   /** One animation frame: ask for the next frame of the search, and draw what has arrived. */
   tick(ts) {
     this.rafId = 0;
-    const running = this.state === 'running';
+    const running = this.state === 'running' || this.stepping > 0;
     if ((running || this.wantFrame) && !this.inflight && this.runs.length) {
       this.wantFrame = false;
       this.inflight = true;
@@ -269,7 +278,7 @@ export class Controller {
         this.fail(err);
       }
     }
-    if (this.state === 'running') this.schedule();
+    if (running) this.schedule();
   }
 
   measure(ts) {

@@ -13,6 +13,8 @@
 //   play   { speed } / pause / speed { speed }
 //   frame  { requests }                 (at a set speed: that many loops first) answers { frames }
 //   stepLoop / stepMove { requests }    one loop / one move on each unfinished run; answers { frames }
+//                                       (a move a planner has yet to plan is made in calls of bounded
+//                                       length, answering other requests between them)
 //   export                              answers { runs } (Race.export())
 //   benchLoops { config, loops }        answers { loops, ms }: one timed wasm call
 //   usage                               answers { usage: { wallMs, workMs, frameMs, frames, memoryBytes } } since the last call
@@ -44,6 +46,18 @@ const st = {
 // A zero-delay yield to the event loop (setTimeout is clamped to 4 ms once nested).
 const yieldChannel = new MessageChannel();
 yieldChannel.port1.onmessage = () => pump();
+
+/** Resolves on the event loop's next turn, after the messages already queued. */
+function nextTurn() {
+  return new Promise((resolve) => {
+    const { port1, port2 } = new MessageChannel();
+    port1.onmessage = () => {
+      port1.close();
+      resolve();
+    };
+    port2.postMessage(null);
+  });
+}
 
 const running = () => (st.race ? st.race.running() : 0);
 
@@ -156,8 +170,16 @@ const HANDLERS = {
     st.race.stepLoop();
     return frames(msg.requests);
   },
-  stepMove(msg) {
-    st.race.stepMove();
+  async stepMove(msg) {
+    // A planner may take thousands of slices to make its first move: make
+    // it in calls of bounded length and answer frames, pause and reset
+    // between them.
+    const race = st.race;
+    race.askMove();
+    while (!race.makeAskedMoves()) {
+      await nextTurn();
+      if (st.race !== race) throw new Error('stepMove: the runs were replaced before the move was made');
+    }
     return frames(msg.requests);
   },
   export() {

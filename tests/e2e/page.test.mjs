@@ -670,6 +670,43 @@ test('the beam planner makes its plan in slices: the board says how far it has g
   });
 });
 
+test('Step move on a planner yet to make its plan: frames keep coming and the worker answers while the move is planned', { timeout: 180_000 }, async () => {
+  await withApp('?searcher=beam&n=24&sigma=2&autoplay=0', async (page) => {
+    await page.evaluate(() => window.torusTest.ready());
+    assert.equal((await page.evaluate(() => window.torusTest.runs()))[0].steps, 0);
+    await page.click('#step-move');
+    const seen = await page.evaluate(async () => {
+      const out = [];
+      const t0 = performance.now();
+      while (performance.now() - t0 < 120_000) {
+        const r = window.torusTest.runs()[0];
+        if (r && r.steps > 0) break;
+        if (r?.planning) {
+          // A request to the worker mid-plan is answered between slices.
+          const q = performance.now();
+          await window.torusTest.request('usage');
+          out.push({ ...r.planning, steps: r.steps, answerMs: performance.now() - q });
+        }
+        await new Promise((res) => requestAnimationFrame(res));
+      }
+      return out;
+    });
+    assert.ok(seen.length >= 3, `progress seen in ${seen.length} frames`);
+    assert.ok(seen.every((p) => p.steps === 0), 'no move is made while planning');
+    const key = (p) => `${p.stage} ${p.done}`;
+    assert.ok(new Set(seen.map(key)).size >= 3, `the plan moves on between frames: ${seen.map(key).join(' | ')}`);
+    const slowest = Math.max(...seen.map((p) => p.answerMs));
+    assert.ok(slowest < 2000, `the worker answered within ${slowest.toFixed(0)} ms`);
+    // One move, and the page stays paused.
+    await page.waitForFunction(() => window.torusTest.runs()[0].steps === 1, null, { timeout: 60_000 });
+    assert.equal(await page.evaluate(() => window.torusTest.state()), 'paused');
+    await page.waitForTimeout(300);
+    const r = (await page.evaluate(() => window.torusTest.runs()))[0];
+    assert.equal(r.steps, 1);
+    assert.equal(r.planning, null);
+  });
+});
+
 test('the belief MCTS draws its plan ahead, one cell a step from where it stands', { timeout: 120_000 }, async () => {
   await withApp('?variant=pomcp&n=20&sigma=3&speed=1', async (page) => {
     await page.waitForFunction(() => {
