@@ -292,6 +292,8 @@ pub struct Mcts<S: Stats> {
     escape_to: Option<u32>,
     /// An empty simulation, for the fallback target's gains.
     coverage: Coverage,
+    /// Scratch for the escape's fallback scan.
+    row: Vec<f64>,
 }
 
 /// The default `escape`: stalled moves before an MCTS heads for unsearched
@@ -317,6 +319,7 @@ impl<S: Stats> Mcts<S> {
             escape: cfg.escape,
             escape_to: None,
             coverage: Coverage::new(setup.torus.cells()),
+            row: Vec::new(),
         }
     }
 }
@@ -336,9 +339,15 @@ impl<S: Stats> Searcher for Mcts<S> {
                 // deliberating (the target keeps mass until the belief
                 // changes, which ends the escape).
                 if self.escape_to.is_none() {
-                    self.escape_to =
-                        fallback_target(w.torus, w.sensor, w.belief, &self.coverage, w.pos)
-                            .map(|(c, _)| c);
+                    self.escape_to = fallback_target(
+                        w.torus,
+                        w.sensor,
+                        w.belief,
+                        &self.coverage,
+                        w.pos,
+                        &mut self.row,
+                    )
+                    .map(|(c, _)| c);
                 }
                 if let Some(target) = self.escape_to {
                     let m = toward(w.torus, w.pos, target, Move::Up);

@@ -60,6 +60,8 @@ pub struct Lookahead {
     best_seq: Vec<u32>,
     best: f64,
     best_gain: f64,
+    /// Scratch for the fallback scan.
+    row: Vec<f64>,
 }
 
 /// What a [`Lookahead`] found.
@@ -93,6 +95,7 @@ impl Lookahead {
             best_seq: vec![0; h as usize],
             best: 0.0,
             best_gain: 0.0,
+            row: Vec::new(),
         }
     }
 
@@ -205,7 +208,7 @@ pub fn decide(
         return (found.first, found, None);
     }
     let rate = found.gain / look.depth() as f64;
-    match fallback_target(torus, sensor, belief, cov, pos) {
+    match fallback_target(torus, sensor, belief, cov, pos, &mut look.row) {
         Some((goal, v)) if found.gain <= 0.0 || v > rate => {
             (toward(torus, pos, goal, found.first), found, Some(goal))
         }

@@ -31,23 +31,38 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 
 /// The fallback target: the cell maximising (uncovered planning mass in its
 /// disc) ÷ (torus ℓ1 distance from `pos` + 1), with that value; `None` when
-/// no mass is left. Ties go to the lower cell index. O(N² · disc).
+/// no mass is left. Ties go to the lower cell index. O(N² · disc), a row
+/// of gains at a time ([`Coverage::gains_row`]) in `row`, scratch the
+/// caller keeps so the scan allocates nothing.
 pub fn fallback_target(
     torus: &Torus,
     sensor: &Sensor,
     belief: &BeliefState,
     cov: &Coverage,
     pos: u32,
+    row: &mut Vec<f64>,
 ) -> Option<(u32, f64)> {
+    let n = torus.n();
+    // The row's gains, then each column's distance from `pos` (small
+    // integers, so sums of them as f64 are exact).
+    row.resize(2 * n as usize, 0.0);
+    let (px, py) = torus.xy(pos);
+    let (gains, cols) = row.split_at_mut(n as usize);
+    for (x, d) in (0..n).zip(cols.iter_mut()) {
+        *d = torus.axis_delta(px, x).unsigned_abs() as f64;
+    }
     let mut best: Option<(u32, f64)> = None;
-    for c in 0..torus.cells() as u32 {
-        let g = cov.gain(sensor, belief, c);
-        if g <= 0.0 {
-            continue;
-        }
-        let v = g / (torus.l1(pos, c) as f64 + 1.0);
-        if best.is_none_or(|(_, b)| v > b) {
-            best = Some((c, v));
+    for y in 0..n {
+        cov.gains_row(sensor, belief, y, gains);
+        let dy = torus.axis_delta(py, y).unsigned_abs() as f64 + 1.0;
+        for ((x, &g), &dx) in (0..n).zip(gains.iter()).zip(cols.iter()) {
+            if g <= 0.0 {
+                continue;
+            }
+            let v = g / (dx + dy);
+            if best.is_none_or(|(_, b)| v > b) {
+                best = Some((y * n + x, v));
+            }
         }
     }
     best
