@@ -227,6 +227,9 @@ impl Torus {
 pub struct Sensor {
     r2: u64,
     offsets: Vec<(i32, i32)>,
+    /// For each move (by index), the offsets whose cells the disc at the
+    /// cell moved from does not hold: all a step can newly cover.
+    fronts: [Vec<(i32, i32)>; 4],
     mask: Vec<u8>,
     armed: Option<u32>,
     n: u32,
@@ -263,9 +266,22 @@ impl Sensor {
         // Nearest offsets first makes `optimal_steps` and the arming loop
         // touch the likeliest cells first; order does not affect results.
         offsets.sort_by_key(|&(dx, dy)| (dx * dx + dy * dy, dy, dx));
+        // Relative to the cell moved to, the cell moved from is at −(mx, my):
+        // an offset is in its disc when o + (mx, my) is within the radius.
+        let fronts = Move::ALL.map(|m| {
+            let (mx, my) = m.delta();
+            offsets
+                .iter()
+                .copied()
+                .filter(|&(dx, dy)| {
+                    torus.dist2(0, torus.cell(dx as i64 + mx as i64, dy as i64 + my as i64)) > r2
+                })
+                .collect()
+        });
         Ok(Sensor {
             r2,
             offsets,
+            fronts,
             mask: vec![0; torus.cells()],
             armed: None,
             n,
@@ -286,6 +302,13 @@ impl Sensor {
     /// The cells within the radius of `cell`, each once.
     pub fn around(&self, cell: u32) -> impl Iterator<Item = u32> + '_ {
         disc(self.n, &self.offsets, cell)
+    }
+
+    /// The cells within the radius of `cell` that are not within it of the
+    /// cell a move `m` came from: [`Sensor::around`]'s cells in its order,
+    /// less those (3 of 5 remain at r_v = 1, moving straight or not).
+    pub fn front(&self, m: Move, cell: u32) -> impl Iterator<Item = u32> + '_ {
+        disc(self.n, &self.fronts[m as usize], cell)
     }
 
     /// Marks the cells that detect a target at `target` (disarming the previous one).

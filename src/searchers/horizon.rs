@@ -124,11 +124,19 @@ impl Lookahead {
         let mut overall = f64::NEG_INFINITY;
         let mut first = last.unwrap_or(Move::Up);
         let mut gain = 0.0;
+        // Past the first move a step's disc only adds its front to the
+        // covered disc it came from; from `pos` that holds when its disc
+        // is covered (it is wherever a searcher has stood).
+        let stood = cov.disc_covered(sensor, belief, pos);
         for m in order(last, None) {
             self.best = f64::NEG_INFINITY;
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
-            let g = cov.cover(sensor, belief, q);
+            let g = if stood {
+                cov.cover_step(sensor, belief, m, q)
+            } else {
+                cov.cover(sensor, belief, q)
+            };
             self.cur[0] = q;
             let w = self.h as f64;
             self.dfs(torus, sensor, belief, cov, q, m, 1, w * g, g);
@@ -169,7 +177,7 @@ impl Lookahead {
         for m in order(Some(last), Some(reverse(last))) {
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
-            let g = cov.cover(sensor, belief, q);
+            let g = cov.cover_step(sensor, belief, m, q);
             self.cur[k as usize] = q;
             self.dfs(
                 torus,
