@@ -39,10 +39,20 @@ impl Coverage {
     /// When `cell` is off the lattice this was built for.
     #[inline]
     pub fn cover(&mut self, sensor: &Sensor, belief: &BeliefState, cell: u32) -> f64 {
+        self.mark(belief, sensor.around(cell))
+    }
+
+    /// Marks the uncovered ones of `cells` and returns their planning mass,
+    /// summed in their order.
+    // Always inlined: it is the lookahead's inner loop, and a plain
+    // #[inline] left a call (callgrind, 800 horizon moves at N = 40: 389M
+    // instructions against 355M).
+    #[inline(always)]
+    fn mark(&mut self, belief: &BeliefState, cells: impl Iterator<Item = u32>) -> f64 {
         let searched = belief.searched();
         let mass = belief.plan_mass();
         let mut gain = 0.0;
-        for c in sensor.around(cell) {
+        for c in cells {
             let i = c as usize;
             if self.marked[i] == 0 && searched[i] == 0 {
                 self.marked[i] = 1;
@@ -61,18 +71,7 @@ impl Coverage {
     /// same gain, bit for bit; otherwise it may miss some.
     #[inline]
     pub fn cover_step(&mut self, sensor: &Sensor, belief: &BeliefState, m: Move, cell: u32) -> f64 {
-        let searched = belief.searched();
-        let mass = belief.plan_mass();
-        let mut gain = 0.0;
-        for c in sensor.front(m, cell) {
-            let i = c as usize;
-            if self.marked[i] == 0 && searched[i] == 0 {
-                self.marked[i] = 1;
-                self.stack.push(c);
-                gain += mass[i];
-            }
-        }
-        gain
+        self.mark(belief, sensor.front(m, cell))
     }
 
     /// True when every cell of the disc around `cell` is covered.
