@@ -123,8 +123,8 @@ export class EngineError extends Error {
 /**
  * The request / answer channel to one search worker. Answers are matched to
  * requests by id: most come in order, but a Step move a planner has yet to
- * plan is answered after the requests sent while it was made. After a trap the worker is replaced by a fresh one at the next
- * reset.
+ * plan is answered after the requests sent while it was made. After a trap
+ * the worker is replaced by a fresh one at the next reset.
  */
 export class SearchSession {
   constructor(module) {
