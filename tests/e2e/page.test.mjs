@@ -70,7 +70,12 @@ async function runToEnd(page) {
     window.torusTest.dispatch({ type: 'speed', speed: 'max' });
     window.torusTest.dispatch({ type: 'play' });
   });
-  return waitState(page, ['found', 'capped']);
+  const end = await waitState(page, ['found', 'capped']);
+  // The state changes when the last frame arrives; the panels show it at
+  // the next animation frame, which on a loaded machine can come later
+  // than a poll of the state.
+  await page.waitForFunction(() => /^(Found in|Step cap reached)/.test(document.querySelector('#board-0 .banner').textContent), null, { timeout: 10_000 });
+  return end;
 }
 
 /** A viewport (not full-page) PNG in target/e2e/, the size the README shows. */
