@@ -194,6 +194,14 @@ impl Torus {
         }
     }
 
+    /// `|axis_delta(a, b)|` for coordinates in `0..n`, without a division:
+    /// the shorter way round, `min(|a − b|, n − |a − b|)`.
+    #[inline]
+    pub fn axis_dist(&self, a: u32, b: u32) -> u32 {
+        let d = a.abs_diff(b);
+        d.min(self.n - d)
+    }
+
     /// Torus displacement `(dx, dy)` from cell `a` to cell `b`.
     #[inline]
     pub fn delta(&self, a: u32, b: u32) -> (i32, i32) {
@@ -378,6 +386,23 @@ fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn axis_dist_is_the_length_of_axis_delta() {
+        for n in [1u32, 2, 3, 4, 7, 8, 40] {
+            let t = Torus::new(n.max(3)).unwrap();
+            let n = t.n();
+            for a in 0..n {
+                for b in 0..n {
+                    assert_eq!(
+                        t.axis_dist(a, b),
+                        t.axis_delta(a, b).unsigned_abs(),
+                        "n {n}: {a} {b}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn rejects_bad_sizes_and_radii() {

@@ -383,7 +383,9 @@ struct BeamSearch {
     words: usize,
     front: usize,
     reach: u32,
-    heavy: Vec<u32>,
+    /// The heaviest cells with mass, heaviest first, with their
+    /// coordinates (the rest bound's distances then need no division).
+    heavy: Vec<(u32, u32, u32)>,
     arena: Vec<u64>,
     hist: Vec<(usize, u32)>,
     nodes: Vec<Node>,
@@ -420,6 +422,7 @@ impl BeamSearch {
         });
         let total_left = heavy.len() as u32;
         heavy.truncate(4 * front * depth + sensor.offsets().len());
+        let heavy = with_xy(torus, &heavy);
         let words = cells.div_ceil(64);
         BeamSearch {
             width,
@@ -625,7 +628,7 @@ fn front_and_reach(sensor: &Sensor) -> (usize, u32) {
 fn rest_bound(
     torus: &Torus,
     mass: &[f64],
-    heavy: &[u32],
+    heavy: &[(u32, u32, u32)],
     front: usize,
     reach: u32,
     q: u32,
@@ -635,7 +638,8 @@ fn rest_bound(
     let (mut by_front, mut by_distance) = (0.0, 0.0);
     let mut rest = r;
     let mut k = 0;
-    for &c in heavy {
+    let (qx, qy) = torus.xy(q);
+    for &(c, x, y) in heavy {
         if covered(c) {
             continue;
         }
@@ -648,9 +652,21 @@ fn rest_bound(
         }
         // Seen no sooner than l1 − reach moves from now, so uncovered for
         // at least l1 − reach − 1 of the later moves.
-        by_distance += m * torus.l1(q, c).saturating_sub(reach + 1) as f64;
+        let l1 = torus.axis_dist(qx, x) + torus.axis_dist(qy, y);
+        by_distance += m * l1.saturating_sub(reach + 1) as f64;
     }
     f64::max(by_front, by_distance)
+}
+
+/// Each cell with its coordinates.
+fn with_xy(torus: &Torus, cells: &[u32]) -> Vec<(u32, u32, u32)> {
+    cells
+        .iter()
+        .map(|&c| {
+            let (x, y) = torus.xy(c);
+            (c, x, y)
+        })
+        .collect()
 }
 
 impl Searcher for Beam {
@@ -858,6 +874,7 @@ mod tests {
             let (front, reach) = front_and_reach(&g.sensor);
             let mut heavy: Vec<u32> = (0..g.torus.cells() as u32).collect();
             heavy.sort_by(|&a, &b| mass[b as usize].total_cmp(&mass[a as usize]));
+            let heavy = with_xy(&g.torus, &heavy);
             // R_t along the path.
             let mut covered = vec![false; g.torus.cells()];
             let mut rs = Vec::new();

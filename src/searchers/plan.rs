@@ -49,12 +49,12 @@ pub fn fallback_target(
     let (px, py) = torus.xy(pos);
     let (gains, cols) = row.split_at_mut(n as usize);
     for (x, d) in (0..n).zip(cols.iter_mut()) {
-        *d = torus.axis_delta(px, x).unsigned_abs() as f64;
+        *d = torus.axis_dist(px, x) as f64;
     }
     let mut best: Option<(u32, f64)> = None;
     for y in 0..n {
         cov.gains_row(sensor, belief, y, gains);
-        let dy = torus.axis_delta(py, y).unsigned_abs() as f64 + 1.0;
+        let dy = torus.axis_dist(py, y) as f64 + 1.0;
         for ((x, &g), &dx) in (0..n).zip(gains.iter()).zip(cols.iter()) {
             if g <= 0.0 {
                 continue;
