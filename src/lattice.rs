@@ -194,6 +194,26 @@ impl Torus {
         }
     }
 
+    /// The cell at `(x, y)` with each coordinate in `−n..2n`, and its
+    /// coordinates wrapped into `0..n`: one correction each, no division
+    /// (for coordinates a unit move or two from the lattice's).
+    #[inline]
+    pub fn near(&self, x: i32, y: i32) -> (u32, i32, i32) {
+        let n = self.n as i32;
+        let wrap = |v: i32| {
+            debug_assert!((-n..2 * n).contains(&v), "{v} is not within n of 0..{n}");
+            if v < 0 {
+                v + n
+            } else if v >= n {
+                v - n
+            } else {
+                v
+            }
+        };
+        let (x, y) = (wrap(x), wrap(y));
+        ((y * n + x) as u32, x, y)
+    }
+
     /// `|axis_delta(a, b)|` for coordinates in `0..n`, without a division:
     /// the shorter way round, `min(|a − b|, n − |a − b|)`.
     #[inline]
@@ -312,6 +332,12 @@ impl Sensor {
         disc(self.n, &self.offsets, cell)
     }
 
+    /// [`Sensor::around`] the cell at `(x, y)`, both in `0..n`: the same
+    /// cells in the same order, without dividing to find the coordinates.
+    pub fn around_xy(&self, x: i32, y: i32) -> impl Iterator<Item = u32> + '_ {
+        disc_xy(self.n, &self.offsets, x, y)
+    }
+
     /// The cells within the radius of `cell` that are not within it of the
     /// cell a move `m` came from: [`Sensor::around`]'s cells in its order,
     /// less those (3 of 5 remain at r_v = 1, moving straight or not).
@@ -364,7 +390,11 @@ impl Sensor {
 /// The cells at `offsets` from `cell` on an `n`×`n` torus. A free function
 /// so that `arm` can write the mask while it borrows only the offsets.
 fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> + '_ {
-    let (x, y) = ((cell % n) as i32, (cell / n) as i32);
+    disc_xy(n, offsets, (cell % n) as i32, (cell / n) as i32)
+}
+
+/// [`disc`] around the cell at `(x, y)`, both in `0..n`.
+fn disc_xy(n: u32, offsets: &[(i32, i32)], x: i32, y: i32) -> impl Iterator<Item = u32> + '_ {
     let n = n as i32;
     // Offsets are torus displacements, |d| ≤ n/2, so one correction wraps
     // a coordinate: no division per cell (the belief planners and the
@@ -386,6 +416,21 @@ fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn near_is_cell_within_n_of_the_lattice() {
+        for n in [3u32, 4, 7] {
+            let t = Torus::new(n).unwrap();
+            let n = n as i32;
+            for y in -n..2 * n {
+                for x in -n..2 * n {
+                    let (c, wx, wy) = t.near(x, y);
+                    assert_eq!(c, t.cell(x as i64, y as i64), "n {n}: ({x},{y})");
+                    assert_eq!(t.xy(c), (wx as u32, wy as u32));
+                }
+            }
+        }
+    }
 
     #[test]
     fn axis_dist_is_the_length_of_axis_delta() {

@@ -66,7 +66,7 @@ pub struct Refiner {
     seen_new: Vec<u32>,
     touched: Vec<u32>,
     /// The window's new cells.
-    q: Vec<u32>,
+    q: Vec<(u32, i32, i32)>,
     /// Where the refinement under way stands.
     cursor: Cursor,
 }
@@ -238,7 +238,7 @@ impl Refiner {
             let mut better = false;
             for kind in 0..KINDS {
                 if self.candidate(torus, i, j, kind)
-                    && self.keep_if_better(torus, sensor, mass, cap, i + 1)
+                    && self.keep_if_better(sensor, mass, cap, i + 1)
                 {
                     better = true;
                     break;
@@ -286,8 +286,7 @@ impl Refiner {
                 }
                 let d = (a.0 - mi.0, a.1 - mi.1);
                 for t in i + 1..=j {
-                    let c = torus.cell((self.xs[t] + d.0) as i64, (self.ys[t] + d.1) as i64);
-                    self.q.push(c);
+                    self.q.push(torus.near(self.xs[t] + d.0, self.ys[t] + d.1));
                 }
             }
             4 | 5 => {
@@ -300,7 +299,7 @@ impl Refiner {
                     } else {
                         (self.xs[t - 1] + mj.0, self.ys[t - 1] + mj.1)
                     };
-                    self.q.push(torus.cell(x as i64, y as i64));
+                    self.q.push(torus.near(x, y));
                 }
             }
             _ => {
@@ -312,7 +311,9 @@ impl Refiner {
                     let m = self.mv(t, n);
                     x += m.0;
                     y += m.1;
-                    self.q.push(torus.cell(x as i64, y as i64));
+                    let c = torus.near(x, y);
+                    (x, y) = (c.1, c.2);
+                    self.q.push(c);
                 }
             }
         }
@@ -321,27 +322,18 @@ impl Refiner {
 
     /// Counts the change of span cells `s..s + q.len()` to `q`; keeps it
     /// when it lowers the mean.
-    fn keep_if_better(
-        &mut self,
-        torus: &Torus,
-        sensor: &Sensor,
-        mass: &[f64],
-        cap: u32,
-        s: usize,
-    ) -> bool {
-        if self.q.iter().zip(&self.head[s..]).all(|(a, b)| a == b) {
+    fn keep_if_better(&mut self, sensor: &Sensor, mass: &[f64], cap: u32, s: usize) -> bool {
+        if self.q.iter().zip(&self.head[s..]).all(|(a, &b)| a.0 == b) {
             return false;
         }
         // Below this a gain is rounding, and keeping it could cycle.
         if self.delta(sensor, mass, cap, s) >= -1e-12 {
             return false;
         }
-        for k in 0..self.q.len() {
-            let c = self.q[k];
-            let (x, y) = torus.xy(c);
+        for (k, &(c, x, y)) in self.q.iter().enumerate() {
             self.head[s + k] = c;
-            self.xs[s + k] = x as i32;
-            self.ys[s + k] = y as i32;
+            self.xs[s + k] = x;
+            self.ys[s + k] = y;
         }
         self.index(sensor);
         true
@@ -359,8 +351,8 @@ impl Refiner {
         self.touched.clear();
         // Cells seen before the window keep their first sight; the rest of
         // the new window's cells, at their first new sight.
-        for (k, &cell) in self.q.iter().enumerate() {
-            for c in sensor.around(cell) {
+        for (k, &(_, x, y)) in self.q.iter().enumerate() {
+            for c in sensor.around_xy(x, y) {
                 let ci = c as usize;
                 if (self.tau[ci] as usize) < s || mass[ci] == 0.0 || self.stamp[ci] == self.now {
                     continue;
@@ -372,7 +364,7 @@ impl Refiner {
         }
         // Cells the old window saw first may lose that sight.
         for t in s..=e {
-            for c in sensor.around(self.head[t]) {
+            for c in sensor.around_xy(self.xs[t], self.ys[t]) {
                 let ci = c as usize;
                 if (self.tau[ci] as usize) < s || mass[ci] == 0.0 || self.stamp[ci] == self.now {
                     continue;
