@@ -218,6 +218,13 @@ mod tests {
         assert!((cov.gain(&sensor, &belief, cell) - 0.03).abs() < 1e-12);
     }
 
+    /// A belief on the posterior of a prior with these weights.
+    fn weighted(torus: &Torus, weights: &[f64]) -> BeliefState {
+        let weights = weights.to_vec();
+        let prior = TargetPrior::new(torus, &PriorSpec::Weights { weights }).unwrap();
+        BeliefState::new(Belief::Posterior, prior, None)
+    }
+
     #[test]
     fn a_row_of_gains_is_gain_cell_by_cell_bit_for_bit() {
         // Small lattices, where discs wrap onto themselves, radii from a
@@ -234,14 +241,7 @@ mod tests {
                 .collect();
             for rv in [0.0, 1.0, 1.5, 2.0, 3.0] {
                 let sensor = Sensor::new(&torus, rv).unwrap();
-                let prior = TargetPrior::new(
-                    &torus,
-                    &PriorSpec::Weights {
-                        weights: weights.clone(),
-                    },
-                )
-                .unwrap();
-                let mut belief = BeliefState::new(Belief::Posterior, prior, None);
+                let mut belief = weighted(&torus, &weights);
                 let mut cov = Coverage::new(torus.cells());
                 let mut row = vec![f64::NAN; n as usize];
                 for round in 0..6 {
@@ -291,14 +291,7 @@ mod tests {
                         assert_eq!(sensor.front(m, 0).count(), 3, "r_v = 1: a front of three");
                     }
                 }
-                let prior = TargetPrior::new(
-                    &torus,
-                    &PriorSpec::Weights {
-                        weights: weights.clone(),
-                    },
-                )
-                .unwrap();
-                let mut belief = BeliefState::new(Belief::Posterior, prior, None);
+                let mut belief = weighted(&torus, &weights);
                 for _ in 0..3 {
                     belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
                 }
