@@ -57,8 +57,10 @@ pub struct Refiner {
     tail_first: Vec<u32>,
     /// First sight of each cell anywhere on the path.
     tau: Vec<u32>,
-    /// Every sight within the span as (cell, time), sorted.
+    /// Every sight within the span as (cell, time), sorted, and where each
+    /// cell's sights begin in it (for cells with any).
     sights: Vec<(u32, u32)>,
+    sights_at: Vec<u32>,
     /// Which cells the change under test touches (by stamp), and when the
     /// changed window first sees them.
     stamp: Vec<u32>,
@@ -157,6 +159,7 @@ impl Refiner {
         self.seen_new.resize(cells, NEVER);
         self.now = 0;
         self.sights.clear();
+        self.sights_at.resize(cells, 0);
         self.index(sensor);
         self.cursor.before = self.total(mass, cap);
     }
@@ -383,9 +386,17 @@ impl Refiner {
             let outside = if (old as usize) > e {
                 old
             } else {
-                let k = self
+                // A cell is seen a few times at most (once per pass of
+                // the path within reach), so walking its own sights from
+                // the first is cheaper than a binary search of all of them.
+                let mut k = self.sights_at[ci] as usize;
+                while self
                     .sights
-                    .partition_point(|&(sc, st)| (sc, st) <= (c, e as u32));
+                    .get(k)
+                    .is_some_and(|&(sc, st)| sc == c && st <= e as u32)
+                {
+                    k += 1;
+                }
                 match self.sights.get(k) {
                     Some(&(sc, st)) if sc == c => st,
                     _ => self.tail_first[ci],
@@ -414,6 +425,9 @@ impl Refiner {
             }
         }
         self.sights.sort_unstable();
+        for (k, &(c, _)) in self.sights.iter().enumerate().rev() {
+            self.sights_at[c as usize] = k as u32;
+        }
     }
 
     /// `Σ_c m(c) · min(τ(c), cap)`.
