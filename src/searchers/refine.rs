@@ -488,6 +488,77 @@ mod tests {
         p
     }
 
+    /// `Σ_c m(c) · min(τ(c), cap)` of `path`, counted from scratch.
+    fn brute_total(g: &crate::config::Game, mass: &[f64], cap: u32, path: &[u32]) -> f64 {
+        let mut tau = vec![NEVER; g.torus.cells()];
+        for (t, &p) in path.iter().enumerate() {
+            for c in g.sensor.around(p) {
+                tau[c as usize] = tau[c as usize].min(t as u32);
+            }
+        }
+        let mut s = Sum::default();
+        for (&m, &t) in mass.iter().zip(&tau) {
+            s.add(m * t.min(cap) as f64);
+        }
+        s.value()
+    }
+
+    #[test]
+    fn every_change_is_counted_as_a_recount_of_the_whole_path_would() {
+        // Each change's `delta` against the totals of the path before and
+        // after, counted from scratch: random walks that revisit cells (so
+        // cells are seen several times in and after the window), a tail
+        // after the span, a cap shorter than the path, and changes kept
+        // as they come so the index is rebuilt between checks. A slip in
+        // which sight counts after the window shows here at once, where
+        // the other tests would only run their passes longer.
+        let mut rng = crate::rng::stream(11, 0);
+        let mut checked = 0;
+        for (n, rv, cap) in [(7u32, "1", 45u32), (9, "1.5", 200), (11, "0", 30)] {
+            let (_, g) = game(&[("n", &n.to_string()), ("rv", rv), ("sigma", "2")]);
+            let mass = g.prior.mass();
+            let moves: Vec<Move> = (0..70)
+                .map(|_| Move::from_index(crate::rng::below(&mut rng, 4)))
+                .collect();
+            let mut path = walk(&g.torus, g.start, &moves);
+            let span = 50;
+            let mut r = Refiner::default();
+            r.start(&g.torus, &g.sensor, mass, cap, span, &path);
+            for _ in 0..400 {
+                let i = crate::rng::below(&mut rng, (span - 2) as u32) as usize;
+                let j = i + 1 + crate::rng::below(&mut rng, (span - 1 - i) as u32) as usize;
+                let kind = crate::rng::below(&mut rng, KINDS);
+                if j + 1 >= r.head.len() || !r.candidate(&g.torus, i, j, kind) {
+                    continue;
+                }
+                let before = brute_total(&g, mass, cap, &path);
+                let mut changed = path.clone();
+                for (k, &(c, _, _)) in r.q.iter().enumerate() {
+                    changed[i + 1 + k] = c;
+                }
+                let want = brute_total(&g, mass, cap, &changed) - before;
+                let got = r.delta(&g.sensor, mass, cap, i + 1);
+                assert!(
+                    (got - want).abs() < 1e-12,
+                    "n {n} rv {rv} cap {cap} i {i} j {j} kind {kind}: {got} != {want}"
+                );
+                checked += 1;
+                if crate::rng::below(&mut rng, 4) == 0 {
+                    // Keep it whatever its sign, as the next checks need a
+                    // rebuilt index, not a better path.
+                    for (k, &(c, x, y)) in r.q.clone().iter().enumerate() {
+                        r.head[i + 1 + k] = c;
+                        r.xs[i + 1 + k] = x;
+                        r.ys[i + 1 + k] = y;
+                    }
+                    r.index(&g.sensor);
+                    path = changed;
+                }
+            }
+        }
+        assert!(checked > 600, "{checked} changes checked");
+    }
+
     #[test]
     fn its_counts_are_the_exact_mean_and_never_go_up() {
         // A lawnmower with wasted wiggles over a 12-torus, Gaussian prior:
