@@ -1121,6 +1121,21 @@ impl Config {
     }
 }
 
+#[cfg(test)]
+impl Config {
+    /// This configuration with each `(name, value)` set as the CLI and URL
+    /// would set it, for tests that read best as a list of settings.
+    ///
+    /// # Panics
+    /// If a name is unknown or a value out of its range.
+    pub(crate) fn with(mut self, settings: &[(&str, &str)]) -> Config {
+        for (k, v) in settings {
+            self.set(k, v).unwrap_or_else(|e| panic!("{k} = {v}: {e}"));
+        }
+        self
+    }
+}
+
 /// The lattice, sensor, target prior and start cell a configuration describes.
 #[derive(Clone, Debug)]
 pub struct Game {

@@ -139,14 +139,11 @@ mod tests {
             loops: 10,
             ..Config::default()
         };
-        let mut beam = mcts.clone();
-        for (k, v) in [
+        let beam = mcts.clone().with(&[
             ("searcher", "beam"),
             ("beam_width", "8"),
             ("beam_depth", "20"),
-        ] {
-            beam.set(k, v).unwrap();
-        }
+        ]);
         let mut race = Race::new(&[mcts, beam]).unwrap();
         let mut planned_behind = false;
         for _ in 0..20_000 {
@@ -175,14 +172,11 @@ mod tests {
             loops: 10,
             ..Config::default()
         };
-        let mut beam = mcts.clone();
-        for (k, v) in [
+        let beam = mcts.clone().with(&[
             ("searcher", "beam"),
             ("beam_width", "6"),
             ("beam_depth", "17"),
-        ] {
-            beam.set(k, v).unwrap();
-        }
+        ]);
         let mut race = Race::new(&[mcts.clone(), beam.clone()]).unwrap();
         // A clock that stands still: only the slice count ends a call.
         for r in race.runs_mut() {

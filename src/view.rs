@@ -586,17 +586,14 @@ mod tests {
     fn a_frame_carries_at_most_max_intent_cells_of_a_plan() {
         // A beam plan over a uniform 120-torus runs to about 4 800 cells; a
         // cheap one (width and depth 1, horizon 2).
-        let mut cfg = Config::default();
-        for (k, v) in [
+        let cfg = Config::default().with(&[
             ("n", "120"),
             ("prior", "uniform"),
             ("searcher", "beam"),
             ("beam_width", "1"),
             ("beam_depth", "1"),
             ("horizon", "2"),
-        ] {
-            cfg.set(k, v).unwrap();
-        }
+        ]);
         let mut ep = Episode::new(&cfg).unwrap();
         ep.step_move();
         assert!(ep.intent().len() > MAX_INTENT, "{}", ep.intent().len());

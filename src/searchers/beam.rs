@@ -750,16 +750,13 @@ mod tests {
         // reported at every slice and moves through the stages in order,
         // no move is made until the plan is, and the path is the one a
         // plan made in a single call gives (made afresh, not recalled).
-        let mut cfg = Config::default();
-        for (k, v) in [
+        let cfg = Config::default().with(&[
             ("n", "14"),
             ("searcher", "beam"),
             ("sigma", "2.25"),
             ("beam_width", "12"),
             ("beam_depth", "30"),
-        ] {
-            cfg.set(k, v).unwrap();
-        }
+        ]);
         let mut sliced = crate::episode::Episode::blind(&cfg).unwrap();
         let (mut slices, mut stages, mut depth) = (0, Vec::new(), 0);
         while !sliced.step_loops(1) {
@@ -809,16 +806,13 @@ mod tests {
         // At the slowest speed (k = 1) and when the worker asks for many
         // microsecond moves (k = 1000) alike: PLAN_CALL_SLICES slices, here
         // of 8 horizon moves each while the rule's path is made.
-        let mut cfg = Config::default();
-        for (k, v) in [
+        let cfg = Config::default().with(&[
             ("n", "30"),
             ("prior", "uniform"),
             ("searcher", "beam"),
             ("beam_width", "4"),
             ("beam_depth", "10"),
-        ] {
-            cfg.set(k, v).unwrap();
-        }
+        ]);
         let per = crate::episode::PLAN_CALL_SLICES * 8;
         let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
         // A clock that stands still: only the slice count ends a call.
@@ -853,15 +847,12 @@ mod tests {
         // heavy ones). Fails if the front were too large or the reach too
         // small.
         for (rv, sigma) in [(1.0, 2.0), (0.0, 1.5), (2.0, 3.0)] {
-            let mut cfg = Config::default();
-            for (k, v) in [
+            let mut cfg = Config::default().with(&[
                 ("n", "12"),
                 ("searcher", "beam"),
                 ("beam_width", "6"),
                 ("beam_depth", "20"),
-            ] {
-                cfg.set(k, v).unwrap();
-            }
+            ]);
             cfg.rv = rv;
             cfg.sigma = sigma;
             let g = cfg.game().unwrap();

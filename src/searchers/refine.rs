@@ -450,10 +450,7 @@ mod tests {
 
     /// The game of the default configuration with `settings`.
     fn game(settings: &[(&str, &str)]) -> (Config, crate::config::Game) {
-        let mut cfg = Config::default();
-        for (k, v) in settings {
-            cfg.set(k, v).unwrap();
-        }
+        let cfg = Config::default().with(settings);
         let g = cfg.game().unwrap();
         (cfg, g)
     }
