@@ -778,6 +778,35 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
   }, { viewport: { width: 390, height: 844 } });
 });
 
+test('every control lies within its panel and the page never scrolls sideways, at phone to wide widths, in both views', { timeout: 120_000 }, async () => {
+  // A select is as wide as its longest option unless the layout says
+  // otherwise: the configuration's right column once stuck out of its panel
+  // (and the window) by 20 px at every width.
+  const outside = (page) => page.evaluate(() => {
+    const out = [];
+    for (const el of document.querySelectorAll('.panel input, .panel select, .panel button, .panel textarea')) {
+      const r = el.getBoundingClientRect();
+      if (r.width === 0) continue; // hidden
+      const p = el.closest('.panel').getBoundingClientRect();
+      if (r.right > p.right + 0.5 || r.left < p.left - 0.5) out.push(`#${el.id || el.tagName}: ${Math.round(r.left)}–${Math.round(r.right)} in ${Math.round(p.left)}–${Math.round(p.right)}`);
+    }
+    const de = document.documentElement;
+    if (de.scrollWidth > de.clientWidth) out.push(`the page scrolls sideways: ${de.scrollWidth} > ${de.clientWidth}`);
+    return out;
+  });
+  await withApp('?prior=paint&race=horizon', async (page) => {
+    for (const width of [380, 800, 1000, 1400, 1920]) {
+      await page.setViewportSize({ width, height: 900 });
+      await page.click('#tab-live');
+      await page.waitForFunction(() => document.body.dataset.view !== 'experiments');
+      assert.deepEqual(await outside(page), [], `live view, ${width} px wide`);
+      await page.click('#tab-experiments');
+      await page.waitForFunction(() => document.body.dataset.view === 'experiments');
+      assert.deepEqual(await outside(page), [], `experiments view, ${width} px wide`);
+    }
+  });
+});
+
 test('batch trials in Web Workers: same results for any number of workers, trial 0 = the page episode', { timeout: 240_000 }, async () => {
   await withApp('?n=16&sigma=3&loops=15&belief=posterior&seed=21&autoplay=0', async (page) => {
     const batch = async () => {
