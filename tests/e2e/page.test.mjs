@@ -803,6 +803,11 @@ test('every control lies within its panel and the page never scrolls sideways, a
       await page.click('#tab-experiments');
       await page.waitForFunction(() => document.body.dataset.view === 'experiments');
       assert.deepEqual(await outside(page), [], `experiments view, ${width} px wide`);
+      // The custom sweep's form, with its textarea, shows only when chosen.
+      await page.selectOption('#exp-name', 'custom');
+      assert.ok(await page.locator('#exp-series').isVisible(), 'the custom form shows');
+      assert.deepEqual(await outside(page), [], `custom experiment, ${width} px wide`);
+      await page.selectOption('#exp-name', 'priors');
     }
   });
 });
