@@ -277,6 +277,8 @@ export class ExperimentsView {
     if (!same || !modes.includes(this.mode)) this.mode = modes[0];
     fillSelect($('exp-chart'), modes.map((m) => [m, MODE_LABELS[m]]));
     $('exp-chart').value = this.mode;
+    // Empty until there is a result to chart.
+    $('exp-chart').disabled = false;
     const e = data.experiment;
     setText('exp-title', `${e.title}${partial ? ` (running: ${partial})` : ''}`);
     this.fillTable(data);

@@ -98,7 +98,14 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     assert.equal(await page.inputValue('#exp-seed'), SMALL.seed);
     assert.equal(await page.inputValue('#exp-sweep-key'), 'sigma');
     assert.equal(await page.inputValue('#exp-sweep-values'), '0 3');
+    // Nothing to chart or download before a result.
+    for (const id of ['#exp-chart', '#exp-csv', '#exp-json', '#exp-svg', '#exp-png']) {
+      assert.equal(await page.locator(id).isDisabled(), true, `${id} before a result`);
+    }
     assert.equal(await runAndWait(page), 'done', await page.locator('#exp-status').textContent());
+    for (const id of ['#exp-chart', '#exp-csv', '#exp-json', '#exp-svg', '#exp-png']) {
+      assert.equal(await page.locator(id).isDisabled(), false, `${id} with a result`);
+    }
     const text = await page.evaluate(() => window.torusTest.experiments.result());
     assert.equal(text, cli.json, 'the page JSON is the CLI JSON');
     assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('csv')), cli.csv, 'the page CSV is the CLI CSV');
