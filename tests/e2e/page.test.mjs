@@ -794,7 +794,10 @@ test('every control lies within its panel and the page never scrolls sideways, a
     if (de.scrollWidth > de.clientWidth) out.push(`the page scrolls sideways: ${de.scrollWidth} > ${de.clientWidth}`);
     return out;
   });
-  await withApp('?prior=paint&race=horizon', async (page) => {
+  await withApp('?race=horizon', async (page) => {
+    // A painted prior shows the paint tools in the configuration too.
+    await page.selectOption('#prior', 'paint');
+    assert.ok(await page.locator('#brush').isVisible(), 'the paint tools show');
     for (const width of [380, 800, 1000, 1400, 1920]) {
       await page.setViewportSize({ width, height: 900 });
       await page.click('#tab-live');
