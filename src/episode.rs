@@ -122,6 +122,11 @@ pub const PLAN_CALL_SLICES: u32 = 8;
 /// on large lattices).
 pub const PLAN_CALL_MS: f64 = 8.0;
 
+/// The most moves of a searcher that does not deliberate between readings
+/// of the clock in [`Episode::advance`]; the stride doubles while a stride
+/// of moves takes under PLAN_CALL_MS ÷ 64.
+const MAX_STRIDE: u64 = 1024;
+
 /// One trial, advanced move by move or loop by loop.
 pub struct Episode {
     cfg: Config,
@@ -277,10 +282,11 @@ impl Episode {
     }
 
     /// `k` loops of work, carried across decisions, stopping early if the
-    /// episode ends; for a searcher that does not deliberate, `k` moves,
-    /// where a move may instead be slices of a plan being made, the call
-    /// stopping after [`PLAN_CALL_SLICES`] slices or [`PLAN_CALL_MS`]. Returns
-    /// the real moves made.
+    /// episode ends; for a searcher that does not deliberate, up to `k`
+    /// moves, where a move may instead be slices of a plan being made, the
+    /// call stopping after [`PLAN_CALL_SLICES`] slices or once
+    /// [`PLAN_CALL_MS`] have passed (checked after every slice, and after
+    /// moves). Returns the real moves made.
     pub fn advance(&mut self, k: u64) -> u64 {
         self.advance_within(k, u64::MAX)
     }
@@ -292,6 +298,13 @@ impl Episode {
         let mut moves = 0;
         if !self.info.deliberates {
             let (mut slices, t0) = (0, self.budget.now());
+            // The call also ends once PLAN_CALL_MS has passed after a move:
+            // the caller sizes `k` from the moves it has timed, and a move of
+            // a planner on a large lattice (rollout improvement at N = 512)
+            // can take a second, so a `k` sized for the cheap first moves
+            // held the worker for half a minute. The clock is a host call in
+            // wasm, so while moves are cheap it is read every `stride` of them.
+            let (mut stride, mut since, mut last) = (1u64, 0u64, t0);
             'calls: for _ in 0..k {
                 if moves >= max_moves || self.status != Status::Running {
                     break;
@@ -311,6 +324,18 @@ impl Episode {
                     }
                 }
                 moves += 1;
+                since += 1;
+                if since == stride {
+                    since = 0;
+                    let now = self.budget.now();
+                    if now - t0 >= PLAN_CALL_MS {
+                        break;
+                    }
+                    if now - last < PLAN_CALL_MS / 64.0 && stride < MAX_STRIDE {
+                        stride *= 2;
+                    }
+                    last = now;
+                }
             }
             return moves;
         }
@@ -478,6 +503,60 @@ impl Episode {
             found: self.status == Status::Found,
             target: self.target,
             counters: self.counters,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+
+    /// A blind trial of `searcher` at N = 40 (the default prior).
+    fn blind(searcher: &str) -> Episode {
+        Episode::blind(&Config::default().with(&[("searcher", searcher)])).unwrap()
+    }
+
+    #[test]
+    fn a_call_of_moves_makes_all_k_while_time_allows_reading_the_clock_rarely() {
+        // Microsecond moves on a clock that gains 1 µs a reading: all k
+        // moves, with the clock read about log2(1024) + k/1024 times, not k.
+        static READS: AtomicU64 = AtomicU64::new(0);
+        let mut ep = blind("rw");
+        ep.set_clock(|| READS.fetch_add(1, Relaxed) as f64 * 1e-3);
+        assert_eq!(ep.advance(10_000), 10_000);
+        let reads = READS.load(Relaxed);
+        assert!(reads < 40, "{reads} clock readings for 10 000 moves");
+        let mut one = blind("rw");
+        for _ in 0..10_000 {
+            one.step_move();
+        }
+        assert_eq!(one.path(), ep.path());
+    }
+
+    #[test]
+    fn a_call_of_moves_ends_once_its_time_is_spent_and_the_path_is_the_same() {
+        // Moves that each take 5 ms on the episode's clock (a slow planner
+        // on a large lattice): a call asked for 1000 moves ends after two,
+        // the first reading past PLAN_CALL_MS. The moves are the same as
+        // made one at a time: only the pace depends on the clock.
+        static TICKS: AtomicU64 = AtomicU64::new(0);
+        for searcher in ["rw", "horizon"] {
+            TICKS.store(0, Relaxed);
+            let mut ep = blind(searcher);
+            ep.set_clock(|| 5.0 * TICKS.fetch_add(1, Relaxed) as f64);
+            let mut calls = 0;
+            while ep.steps() < 60 {
+                TICKS.store(0, Relaxed);
+                assert_eq!(ep.advance(1000), 2, "{searcher}");
+                calls += 1;
+            }
+            assert_eq!(calls, 30);
+            let mut one = blind(searcher);
+            while one.steps() < 60 {
+                one.step_move();
+            }
+            assert_eq!(one.path(), ep.path(), "{searcher}");
         }
     }
 }

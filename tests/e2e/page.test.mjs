@@ -778,6 +778,26 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
   }, { viewport: { width: 390, height: 844 } });
 });
 
+test('a planner whose moves take a second keeps the search worker answering at full speed', { timeout: 120_000 }, async () => {
+  // Rollout improvement at N = 512 takes about 0.5 s a move in wasm. The
+  // worker sizes its calls from the moves it has timed, and the cheap first
+  // ones once sized a call at dozens of such moves: 30 s without an answer.
+  await withApp('?searcher=improve&n=512&speed=max', async (page) => {
+    const waits = [];
+    for (let i = 0; i < 8; i++) {
+      waits.push(await page.evaluate(async () => {
+        const t = performance.now();
+        await window.torusTest.request('usage');
+        return Math.round(performance.now() - t);
+      }));
+      await page.waitForTimeout(500);
+    }
+    const steps = Number(await page.locator('#steps').textContent());
+    assert.ok(Math.max(...waits) < 5_000, `the worker answered in ${waits.join(', ')} ms`);
+    assert.ok(steps >= 2, `${steps} moves made`);
+  });
+});
+
 test('every control lies within its panel and the page never scrolls sideways, at phone to wide widths, in both views', { timeout: 120_000 }, async () => {
   // A select is as wide as its longest option unless the layout says
   // otherwise: the configuration's right column once stuck out of its panel
