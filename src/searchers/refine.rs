@@ -333,13 +333,19 @@ impl Refiner {
         if self.delta(sensor, mass, cap, s) >= -1e-12 {
             return false;
         }
+        self.apply(sensor, s);
+        true
+    }
+
+    /// Makes span cells `s..s + q.len()` the cells of `q` and rebuilds the
+    /// index of sights.
+    fn apply(&mut self, sensor: &Sensor, s: usize) {
         for (k, &(c, x, y)) in self.q.iter().enumerate() {
             self.head[s + k] = c;
             self.xs[s + k] = x;
             self.ys[s + k] = y;
         }
         self.index(sensor);
-        true
     }
 
     /// The change in `Σ_c m(c) · min(τ(c), cap)` if span cells `s..` became
@@ -543,12 +549,7 @@ mod tests {
                 if crate::rng::below(&mut rng, 4) == 0 {
                     // Keep it whatever its sign, as the next checks need a
                     // rebuilt index, not a better path.
-                    for (k, &(c, x, y)) in r.q.clone().iter().enumerate() {
-                        r.head[i + 1 + k] = c;
-                        r.xs[i + 1 + k] = x;
-                        r.ys[i + 1 + k] = y;
-                    }
-                    r.index(&g.sensor);
+                    r.apply(&g.sensor, i + 1);
                     path = changed;
                 }
             }
