@@ -35,10 +35,14 @@ fn race(json: &str) -> Race {
     Race::new(js(json)).map_err(JsValue::from).unwrap()
 }
 
-/// The first run's path, as its export gives it.
-fn exported_path(r: &Race) -> Vec<u32> {
-    let exported = js_sys::Array::from(&r.export().map_err(JsValue::from).unwrap()).get(0);
-    js_sys::Array::from(&get(&exported, "path"))
+/// The first run's export.
+fn exported(r: &Race) -> JsValue {
+    js_sys::Array::from(&r.export().map_err(JsValue::from).unwrap()).get(0)
+}
+
+/// The path of a run's export.
+fn path_of(exported: &JsValue) -> Vec<u32> {
+    js_sys::Array::from(&get(exported, "path"))
         .iter()
         .map(|c| c.as_f64().unwrap() as u32)
         .collect()
@@ -221,8 +225,8 @@ fn the_facade_matches_the_core_episode_exactly() {
     let cfg: Config = serde_json::from_str(json).unwrap();
     let mut core = CoreEpisode::new(&cfg).unwrap();
     let res = core.run();
-    let exported = js_sys::Array::from(&r.export().map_err(JsValue::from).unwrap()).get(0);
-    assert_eq!(exported_path(&r), core.path());
+    let exported = exported(&r);
+    assert_eq!(path_of(&exported), core.path());
     let result = get(&exported, "result");
     assert_eq!(num(&result, "steps"), res.steps as f64);
     assert_eq!(num(&result, "target"), res.target as f64);
@@ -255,7 +259,7 @@ fn step_move_on_a_planner_is_made_in_calls_of_bounded_length() {
     let cfg: Config = serde_json::from_str(json).unwrap();
     let mut core = CoreEpisode::new(&cfg).unwrap();
     core.step_move();
-    assert_eq!(exported_path(&r), core.path());
+    assert_eq!(path_of(&exported(&r)), core.path());
 }
 
 #[wasm_bindgen_test]
