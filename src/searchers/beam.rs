@@ -328,6 +328,7 @@ impl Beam {
             stage,
             done: done as u32,
             total: total as u32,
+            per_move: false,
         })
     }
 }

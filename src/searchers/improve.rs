@@ -27,7 +27,7 @@
 use super::horizon::{decide, Lookahead};
 use super::plan::{toward, CoverWalk, Sum};
 use super::sweep::{sweep_path, SweepPattern};
-use super::{MoveScores, Searcher, SearcherInfo, World};
+use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
@@ -85,6 +85,13 @@ pub struct Improve {
     scratch: Vec<u32>,
     best: Vec<u32>,
     scores: Option<MoveScores>,
+    /// The decision under way, between slices.
+    pending: Option<Pending>,
+    /// The work one slice may spend ([`SLICE_WORK`]).
+    slice: u64,
+    /// The work of each slice made (tests check the bound).
+    #[cfg(test)]
+    slice_work: Vec<u64>,
 }
 
 /// The belief at a decision: mass left and cells with mass left.
@@ -149,12 +156,163 @@ impl Improve {
             scratch: Vec::with_capacity(room),
             best: Vec::with_capacity(room),
             scores: None,
+            pending: None,
+            slice: SLICE_WORK,
+            #[cfg(test)]
+            slice_work: Vec::new(),
         }
     }
 
+    /// The bases each completion of a decision is made with.
+    fn bases(&self) -> &'static [Base] {
+        match self.base {
+            Base::Best => &SINGLE,
+            Base::Cover => &SINGLE[0..1],
+            Base::Sweep => &SINGLE[1..2],
+            Base::Horizon => &SINGLE[2..3],
+        }
+    }
+
+    /// Starts a completion from `pos` with `base` after the move `first`
+    /// (`None`: the base's own move) of at most `limit` moves: clears the
+    /// simulation and `self.scratch`, and makes the move `first`.
+    #[allow(clippy::too_many_arguments)]
+    fn begin_run(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        pos: u32,
+        first: Option<Move>,
+        base: Base,
+        start: Left,
+        limit: usize,
+    ) -> Run {
+        self.cov.clear();
+        self.scratch.clear();
+        let mut run = Run {
+            base,
+            left: start,
+            sum: Sum::default(),
+            p: pos,
+            last: self.last,
+            walk: CoverWalk::new(self.last),
+            waypoint: self.sweep_from,
+            limit,
+        };
+        if let Some(m) = first {
+            let q = torus.step(pos, m);
+            advance(
+                sensor,
+                belief,
+                &mut self.cov,
+                &mut run.left,
+                &mut run.sum,
+                &mut self.scratch,
+                q,
+            );
+            run.p = q;
+            run.last = Some(m);
+            run.walk = CoverWalk::new(run.last);
+        }
+        run
+    }
+
+    /// Continues `run` until it is done (true; `Σ R_t` over its cells is
+    /// `run.sum`, the cells are in `self.scratch`) or `work` reaches
+    /// `budget` (false). Each simulated move adds its cost to `work`
+    /// ([`SLICE_WORK`] says what a unit is), so where a slice ends depends
+    /// on the work alone and the completion is the same however it is cut.
+    fn proceed(
+        &mut self,
+        run: &mut Run,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        work: &mut u64,
+        budget: u64,
+    ) -> bool {
+        let cells = torus.cells() as u64;
+        while run.left.cells > 0 && self.scratch.len() < run.limit {
+            if *work >= budget {
+                return false;
+            }
+            let p = run.p;
+            let m = match run.base {
+                Base::Cover | Base::Best => {
+                    self.cover_move(run, torus, sensor, belief, work, cells)
+                }
+                Base::Sweep => {
+                    while run.waypoint < self.sweep.len()
+                        && self.cov.gain(sensor, belief, self.sweep[run.waypoint]) <= 0.0
+                    {
+                        run.waypoint += 1;
+                        *work += 1;
+                    }
+                    match self.sweep.get(run.waypoint) {
+                        Some(&w) => {
+                            *work += COVER_MOVE_WORK;
+                            toward(torus, p, w, Move::Right)
+                        }
+                        None => self.cover_move(run, torus, sensor, belief, work, cells),
+                    }
+                }
+                Base::Horizon => {
+                    let (m, found, _) = decide(
+                        &mut self.look,
+                        torus,
+                        sensor,
+                        belief,
+                        &mut self.cov,
+                        p,
+                        run.last,
+                        false,
+                    );
+                    // The lookahead's simulated moves, and the far-goal
+                    // scan it makes when nothing within reach adds mass.
+                    *work += 2 * 3u64.pow(self.look.depth());
+                    if found.gain <= 0.0 {
+                        *work += cells;
+                    }
+                    m
+                }
+            };
+            let q = torus.step(p, m);
+            advance(
+                sensor,
+                belief,
+                &mut self.cov,
+                &mut run.left,
+                &mut run.sum,
+                &mut self.scratch,
+                q,
+            );
+            run.p = q;
+            run.last = Some(m);
+        }
+        true
+    }
+
+    /// The coverage walk's move in `run`, its cost added to `work` (a scan
+    /// of the `cells` when it picks a new far goal).
+    fn cover_move(
+        &mut self,
+        run: &mut Run,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        work: &mut u64,
+        cells: u64,
+    ) -> Move {
+        let scans = run.walk.scans();
+        let m = run.walk.next_move(torus, sensor, belief, &self.cov, run.p);
+        *work += COVER_MOVE_WORK + (run.walk.scans() - scans) as u64 * cells;
+        m
+    }
+
     /// Completes the search from `pos` with `base` after the move `first`
-    /// (`None`: the base's own move), writing the cells into `self.scratch`
-    /// and returning `Σ R_t` over them. At most `limit` moves.
+    /// (`None`: the base's own move), in one go, writing the cells into
+    /// `self.scratch` and returning `Σ R_t` over them. At most `limit` moves.
     #[allow(clippy::too_many_arguments)]
     fn complete(
         &mut self,
@@ -167,71 +325,9 @@ impl Improve {
         start: Left,
         limit: usize,
     ) -> f64 {
-        self.cov.clear();
-        self.scratch.clear();
-        let mut left = start;
-        let mut sum = Sum::default();
-        let mut p = pos;
-        let mut last = self.last;
-        let mut walk = CoverWalk::new(last);
-        let mut waypoint = self.sweep_from;
-        if let Some(m) = first {
-            let q = torus.step(p, m);
-            advance(
-                sensor,
-                belief,
-                &mut self.cov,
-                &mut left,
-                &mut sum,
-                &mut self.scratch,
-                q,
-            );
-            p = q;
-            last = Some(m);
-            walk = CoverWalk::new(last);
-        }
-        while left.cells > 0 && self.scratch.len() < limit {
-            let m = match base {
-                Base::Cover | Base::Best => walk.next_move(torus, sensor, belief, &self.cov, p),
-                Base::Sweep => {
-                    while waypoint < self.sweep.len()
-                        && self.cov.gain(sensor, belief, self.sweep[waypoint]) <= 0.0
-                    {
-                        waypoint += 1;
-                    }
-                    match self.sweep.get(waypoint) {
-                        Some(&w) => toward(torus, p, w, Move::Right),
-                        None => walk.next_move(torus, sensor, belief, &self.cov, p),
-                    }
-                }
-                Base::Horizon => {
-                    decide(
-                        &mut self.look,
-                        torus,
-                        sensor,
-                        belief,
-                        &mut self.cov,
-                        p,
-                        last,
-                        false,
-                    )
-                    .0
-                }
-            };
-            let q = torus.step(p, m);
-            advance(
-                sensor,
-                belief,
-                &mut self.cov,
-                &mut left,
-                &mut sum,
-                &mut self.scratch,
-                q,
-            );
-            p = q;
-            last = Some(m);
-        }
-        sum.value()
+        let mut run = self.begin_run(torus, sensor, belief, pos, first, base, start, limit);
+        self.proceed(&mut run, torus, sensor, belief, &mut 0, u64::MAX);
+        run.sum.value()
     }
 
     /// `Σ R_t` along what is left of the incumbent.
@@ -252,11 +348,16 @@ impl Improve {
         std::mem::swap(&mut self.incumbent, &mut self.best);
         self.inc_at = 0;
     }
-}
 
-impl Searcher for Improve {
-    fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
-        let (torus, sensor, belief, pos) = (w.torus, &*w.sensor, &*w.belief, w.pos);
+    /// Sets up the decision at `pos`: which completions it makes, and the
+    /// incumbent's cost when the incumbent still holds.
+    fn begin_decision(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        pos: u32,
+    ) -> Pending {
         while self.sweep_from < self.sweep.len() && {
             self.cov.clear();
             self.cov.gain(sensor, belief, self.sweep[self.sweep_from]) <= 0.0
@@ -266,49 +367,148 @@ impl Searcher for Improve {
         let start = left_of(belief);
         // Terms t = steps+1 ..= step_cap−1 of Σ_{t<cap} R_t remain.
         let limit = self.step_cap.saturating_sub(self.steps + 1) as usize;
-        let bases: &[Base] = match self.base {
-            Base::Best => &SINGLE,
-            Base::Cover => &SINGLE[0..1],
-            Base::Sweep => &SINGLE[1..2],
-            Base::Horizon => &SINGLE[2..3],
-        };
         let fresh =
             self.inc_at >= self.incumbent.len() || torus.l1(pos, self.incumbent[self.inc_at]) != 1;
-        let mut inc = f64::INFINITY;
-        if fresh {
-            // The base's own path (the cheapest base's, with `best`).
-            for &b in bases {
-                let c = self.complete(torus, sensor, belief, pos, None, b, start, limit);
-                if c < inc && !self.scratch.is_empty() {
-                    inc = c;
-                    std::mem::swap(&mut self.scratch, &mut self.best);
-                }
-            }
-            if inc.is_finite() {
-                self.adopt_best();
-            }
+        let n = self.bases().len();
+        let inc = if fresh {
+            f64::INFINITY
         } else {
-            inc = self.incumbent_cost(sensor, belief, start);
+            self.incumbent_cost(sensor, belief, start)
+        };
+        let moves = if start.cells > 0 && limit > 0 {
+            4 * n
+        } else {
+            0
+        };
+        Pending {
+            start,
+            limit,
+            own: if fresh { n } else { 0 },
+            jobs: if fresh { n } else { 0 } + moves,
+            job: 0,
+            inc,
+            cheapest: inc,
+            improved: false,
+            score: [f64::NAN; 4],
+            run: None,
         }
-        let mut score = [f64::NAN; 4];
-        let mut cheapest = inc;
-        let mut improved = false;
-        if start.cells > 0 && limit > 0 {
-            for m in Move::ALL {
-                for &b in bases {
-                    let c = self.complete(torus, sensor, belief, pos, Some(m), b, start, limit);
-                    if score[m as usize].is_nan() || c < score[m as usize] {
-                        score[m as usize] = c;
-                    }
-                    if c < cheapest {
-                        cheapest = c;
-                        improved = true;
-                        std::mem::swap(&mut self.scratch, &mut self.best);
-                    }
-                }
+    }
+
+    /// Takes in the completion `job` of `d` just finished (cost `c`, cells
+    /// in `self.scratch`).
+    fn finished(&mut self, d: &mut Pending, c: f64) {
+        let bases = self.bases();
+        if d.job < d.own {
+            // The base's own path (the cheapest base's, with `best`).
+            if c < d.inc && !self.scratch.is_empty() {
+                d.inc = c;
+                std::mem::swap(&mut self.scratch, &mut self.best);
             }
+            if d.job + 1 == d.own {
+                if d.inc.is_finite() {
+                    self.adopt_best();
+                }
+                d.cheapest = d.inc;
+            }
+            return;
         }
-        if improved {
+        let m = Move::ALL[(d.job - d.own) / bases.len()];
+        let s = &mut d.score[m as usize];
+        if s.is_nan() || c < *s {
+            *s = c;
+        }
+        if c < d.cheapest {
+            d.cheapest = c;
+            d.improved = true;
+            std::mem::swap(&mut self.scratch, &mut self.best);
+        }
+    }
+
+    /// The first move and base of completion `job` of `d`.
+    fn job(&self, d: &Pending) -> (Option<Move>, Base) {
+        let bases = self.bases();
+        if d.job < d.own {
+            (None, bases[d.job])
+        } else {
+            let k = d.job - d.own;
+            (Some(Move::ALL[k / bases.len()]), bases[k % bases.len()])
+        }
+    }
+}
+
+/// A completion under way, between slices (the improver's `cov` and
+/// `scratch` hold its simulation and cells).
+struct Run {
+    base: Base,
+    left: Left,
+    sum: Sum,
+    p: u32,
+    last: Option<Move>,
+    walk: CoverWalk,
+    waypoint: usize,
+    limit: usize,
+}
+
+/// A decision under way: its completions are made one after another, the
+/// base's own paths first when the incumbent no longer holds (`own` of
+/// them), then each move with each base, in `Move::ALL` order.
+struct Pending {
+    start: Left,
+    limit: usize,
+    own: usize,
+    jobs: usize,
+    /// The completion under way (or next), by index.
+    job: usize,
+    /// The incumbent's cost, and the cheapest completion so far.
+    inc: f64,
+    cheapest: f64,
+    improved: bool,
+    score: [f64; 4],
+    run: Option<Run>,
+}
+
+/// Work units one slice of a decision may spend (it ends after the
+/// simulated move that reaches them): a horizon move costs its lookahead's
+/// `2·3^h` simulated moves, a coverage or sweep move [`COVER_MOVE_WORK`],
+/// and a far-goal scan the lattice's cells. About a millisecond natively at
+/// N = 40; a decision there is 5–100 slices, one at N = 512 thousands, and
+/// the page's worker ends a call after a few of them.
+const SLICE_WORK: u64 = 20_000;
+
+/// What a coverage-walk or sweep move costs in [`SLICE_WORK`]'s units (it
+/// looks at four neighbours' discs: about as long as one simulated move of
+/// the lookahead, `bench --moves` shows).
+const COVER_MOVE_WORK: u64 = 1;
+
+impl Searcher for Improve {
+    fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
+        let (torus, sensor, belief, pos) = (w.torus, &*w.sensor, &*w.belief, w.pos);
+        let mut d = match self.pending.take() {
+            Some(d) => d,
+            None => self.begin_decision(torus, sensor, belief, pos),
+        };
+        let mut work = 0;
+        while d.job < d.jobs {
+            let mut run = match d.run.take() {
+                Some(run) => run,
+                None => {
+                    let (first, base) = self.job(&d);
+                    self.begin_run(torus, sensor, belief, pos, first, base, d.start, d.limit)
+                }
+            };
+            if !self.proceed(&mut run, torus, sensor, belief, &mut work, self.slice) {
+                d.run = Some(run);
+                self.pending = Some(d);
+                #[cfg(test)]
+                self.slice_work.push(work);
+                return None;
+            }
+            self.finished(&mut d, run.sum.value());
+            d.job += 1;
+        }
+        #[cfg(test)]
+        self.slice_work.push(work);
+        if d.improved {
             self.adopt_best();
         }
         let m = match self.incumbent.get(self.inc_at) {
@@ -319,7 +519,7 @@ impl Searcher for Improve {
         self.scores = Some(MoveScores {
             meaning: MEANING,
             higher_is_better: false,
-            score,
+            score: d.score,
             chosen: m as u8,
         });
         Some(m)
@@ -351,6 +551,16 @@ impl Searcher for Improve {
     fn scores(&self) -> Option<MoveScores> {
         self.scores
     }
+
+    fn planning(&self) -> Option<Planning> {
+        let d = self.pending.as_ref()?;
+        Some(Planning {
+            stage: "completing the search after each move",
+            done: d.job as u32,
+            total: d.jobs as u32,
+            per_move: true,
+        })
+    }
 }
 
 /// The exact `Σ_{t<cap} R_t` of `base` alone from the start of `cfg` (what
@@ -376,16 +586,129 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<f64, crate::config::ConfigE
     );
     let start = left_of(&belief);
     let limit = cfg.step_cap.saturating_sub(1) as usize;
-    let bases: &[Base] = match base {
-        Base::Best => &SINGLE,
-        Base::Cover => &SINGLE[0..1],
-        Base::Sweep => &SINGLE[1..2],
-        Base::Horizon => &SINGLE[2..3],
-    };
+    let bases = imp.bases();
     let mut best = f64::INFINITY;
     for &b in bases {
         best = best.min(imp.complete(&g.torus, &g.sensor, &belief, g.start, None, b, start, limit));
     }
     // R_0, the term before any move.
     Ok(best + if start.cells == 0 { 0.0 } else { start.mass })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::budget::Budget;
+    use crate::episode::Counters;
+    use crate::traces::Traces;
+
+    /// What driving an improver for `moves` moves gave: the moves, each
+    /// decision's scores, and the work of every slice.
+    struct Drive {
+        moves: Vec<Move>,
+        scores: Vec<[f64; 4]>,
+        slices_per_move: Vec<usize>,
+        slice_work: Vec<u64>,
+    }
+
+    /// Drives an improver for `cfg` as an episode does, one slice per call,
+    /// with slices of at most `slice` work.
+    fn drive(cfg: &Config, slice: u64, moves: usize) -> Drive {
+        let g = cfg.game().unwrap();
+        let mut sensor = g.sensor.clone();
+        let mut belief = BeliefState::new(cfg.belief, g.prior.clone(), None);
+        belief.search_around(&sensor, g.start);
+        let mut imp = Improve::new(cfg, &g.torus, &sensor, g.start);
+        imp.slice = slice;
+        let (mut rng, mut budget) = (crate::rng::stream(1, 1), Budget::new(cfg.loops, cfg.ms));
+        let (mut traces, mut counters) = (Traces::new(0), Counters::default());
+        let mut out = Drive {
+            moves: Vec::new(),
+            scores: Vec::new(),
+            slices_per_move: Vec::new(),
+            slice_work: Vec::new(),
+        };
+        let mut pos = g.start;
+        while out.moves.len() < moves {
+            let mut slices = 1;
+            let m = loop {
+                let mut w = World {
+                    torus: &g.torus,
+                    sensor: &mut sensor,
+                    belief: &mut belief,
+                    rng: &mut rng,
+                    pos,
+                    budget: &mut budget,
+                    traces: &mut traces,
+                    counters: &mut counters,
+                };
+                if let Some(m) = imp.think(&mut w, 1) {
+                    break m;
+                }
+                let p = imp.planning().expect("progress between slices");
+                assert!(p.done < p.total, "{p:?}");
+                slices += 1;
+                assert!(slices < 100_000, "a decision that never ends");
+            };
+            assert!(
+                imp.planning().is_none(),
+                "no decision under way after a move"
+            );
+            pos = g.torus.step(pos, m);
+            belief.search_around(&sensor, pos);
+            imp.observe(&g.torus, m, pos);
+            out.moves.push(m);
+            out.scores.push(imp.scores().unwrap().score);
+            out.slices_per_move.push(slices);
+        }
+        out.slice_work = std::mem::take(&mut imp.slice_work);
+        out
+    }
+
+    #[test]
+    fn a_decision_made_in_slices_of_bounded_work_is_the_decision_made_at_once() {
+        // Every base, on a wide prior (long completions) and a narrow one:
+        // the same moves and the same scores, bit for bit, as decisions
+        // made in one go; every slice stops within one simulated move of
+        // the budget; and with a small budget decisions take several slices.
+        for (base, sigma, moves) in [
+            ("horizon", "10", 12),
+            ("cover", "10", 40),
+            ("sweep", "10", 40),
+            ("best", "2.5", 25),
+        ] {
+            let cfg = Config::default().with(&[
+                ("searcher", "improve"),
+                ("base", base),
+                ("horizon", "4"),
+                ("sigma", sigma),
+            ]);
+            let whole = drive(&cfg, u64::MAX, moves);
+            assert!(whole.slices_per_move.iter().all(|&s| s == 1));
+            // The page's slices, and slices cut finer (more places to resume).
+            for budget in [SLICE_WORK, 500] {
+                let sliced = drive(&cfg, budget, moves);
+                assert_eq!(sliced.moves, whole.moves, "base {base}");
+                for (a, b) in sliced.scores.iter().zip(&whole.scores) {
+                    assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "base {base}");
+                }
+                // One move's most work: the lookahead at h = 4, or a sweep
+                // move's skipped waypoints, and a far-goal scan of the 1600 cells.
+                let most = budget + 2 * 81 + 1600;
+                let longest = sliced.slice_work.iter().max().unwrap();
+                assert!(
+                    *longest <= most,
+                    "base {base}: a slice of {longest} > {most}"
+                );
+                let slices: usize = sliced.slices_per_move.iter().sum();
+                if budget == 500 {
+                    assert!(
+                        slices > 2 * moves,
+                        "base {base}: {slices} slices for {moves} moves"
+                    );
+                }
+                eprintln!("base {base}, budget {budget}: {slices} slices for {moves} moves, the longest {longest}");
+            }
+        }
+    }
 }

@@ -110,6 +110,9 @@ pub struct Planning {
     pub done: u32,
     /// Steps in the stage (0 when not known ahead).
     pub total: u32,
+    /// True for work every move's decision does (rollout improvement's
+    /// completions), false for a plan made once before the moves (the beam).
+    pub per_move: bool,
 }
 
 /// A planner's score of each of the four moves (in `Move::ALL` order) and

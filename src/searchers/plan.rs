@@ -106,12 +106,23 @@ pub fn reverse(m: Move) -> Move {
 pub struct CoverWalk {
     last: Option<Move>,
     goal: Option<u32>,
+    /// Far-goal scans made, for callers that account for work.
+    scans: u32,
 }
 
 impl CoverWalk {
     /// A walk that last moved `last` (its preferred direction), with no goal.
     pub fn new(last: Option<Move>) -> CoverWalk {
-        CoverWalk { last, goal: None }
+        CoverWalk {
+            last,
+            goal: None,
+            scans: 0,
+        }
+    }
+
+    /// The O(N²) scans for a new far goal made so far.
+    pub fn scans(&self) -> u32 {
+        self.scans
     }
 
     /// The next move from `pos` over the simulated coverage `cov`.
@@ -135,6 +146,7 @@ impl CoverWalk {
         } else {
             let stale = self.goal.is_none_or(|g| cov.gain(sensor, belief, g) <= 0.0);
             if stale {
+                self.scans += 1;
                 self.goal = cell_goal(torus, belief, cov, pos);
             }
             match self.goal {

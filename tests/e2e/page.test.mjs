@@ -778,23 +778,32 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
   }, { viewport: { width: 390, height: 844 } });
 });
 
-test('a planner whose moves take a second keeps the search worker answering at full speed', { timeout: 120_000 }, async () => {
-  // Rollout improvement at N = 512 takes about 0.5 s a move in wasm. The
-  // worker sizes its calls from the moves it has timed, and the cheap first
-  // ones once sized a call at dozens of such moves: 30 s without an answer.
-  await withApp('?searcher=improve&n=512&speed=max', async (page) => {
+test('a planner whose moves take seconds keeps the search worker answering at full speed, and shows how far its decision has got', { timeout: 120_000 }, async () => {
+  // Rollout improvement with base horizon at N = 128 and a wide prior takes
+  // about 2 s a move in wasm (four completions of thousands of horizon moves).
+  // The worker sizes its calls from the moves it has timed, and the cheap
+  // first ones once sized a call at dozens of such moves: 30 s without an
+  // answer. Then each move's decision was one call: seconds without one.
+  // Now a decision is made in slices of bounded work.
+  await withApp('?searcher=improve&base=horizon&n=128&sigma=16&speed=max', async (page) => {
     const waits = [];
+    const progress = new Set();
     for (let i = 0; i < 8; i++) {
       waits.push(await page.evaluate(async () => {
         const t = performance.now();
         await window.torusTest.request('usage');
         return Math.round(performance.now() - t);
       }));
+      progress.add(await page.locator('#decision-loops').textContent());
       await page.waitForTimeout(500);
     }
-    const steps = Number(await page.locator('#steps').textContent());
-    assert.ok(Math.max(...waits) < 5_000, `the worker answered in ${waits.join(', ')} ms`);
-    assert.ok(steps >= 2, `${steps} moves made`);
+    assert.ok(Math.max(...waits) < 1_000, `the worker answered in ${waits.join(', ')} ms`);
+    assert.equal(await page.locator('#decision-loops-label').textContent(), 'This move');
+    const shown = [...progress].filter((t) => /^completing the search after each move \d+ of \d+$/.test(t));
+    assert.ok(shown.length >= 2, `the decision's progress shows: ${[...progress].join(' | ')}`);
+    // A decision made every move does not take the board's banner.
+    assert.ok(await page.locator('#board-0 .banner').isHidden(), 'no planning banner');
+    await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
   });
 });
 

@@ -67,7 +67,9 @@ export function updateDecision(run) {
     for (const tr of trs) for (const td of tr.cells) setText(td, '–');
     const p = run.frame.planning;
     const note = p
-      ? `${run.label} is making its plan (${planningText(p)}); the Planned path layer shows the path it is working on.`
+      ? p.per_move
+        ? `${run.label} is deciding its move (${planningText(p)}); the Planned path layer shows the path it follows until a completion beats it.`
+        : `${run.label} is making its plan (${planningText(p)}); the Planned path layer shows the path it is working on.`
       : run.deliberates ? '' : `${run.label} does not deliberate: ${run.help}.`;
     setText('decision-note', note);
     return;

@@ -12,7 +12,10 @@ export const planningText = (p) => `${p.stage} ${p.total ? `${p.done} of ${p.tot
 
 function resultLine(run) {
   const f = run.frame;
-  if (f.planning) return `Planning: ${planningText(f.planning)}…`;
+  // A plan made once gets the banner; a decision made every move (rollout
+  // improvement) shows in the statistics instead, or the banner would
+  // blink at every move.
+  if (f.planning && !f.planning.per_move) return `Planning: ${planningText(f.planning)}…`;
   if (f.status === 'found') return `Found in ${f.steps} steps (optimal ${run.optimal}, ratio ${f.ratio === null ? '—' : f.ratio.toFixed(2)})`;
   if (f.status === 'capped') return `Step cap reached after ${f.steps} steps: not found`;
   return '';
@@ -29,7 +32,9 @@ export function updateStats(runs, meter, { reveal }) {
   setText('lower-bound', run.lower_bound.toFixed(1));
   const cfg = run.config;
   const budget = cfg.ms !== null ? `${cfg.ms} ms` : fmtInt(cfg.loops);
-  setText('decision-loops', run.deliberates ? `${fmtInt(f.loops_done)} / ${budget}` : '—');
+  const deciding = f.planning?.per_move ? planningText(f.planning) : '—';
+  setText('decision-loops-label', run.deliberates ? 'Loops this move' : 'This move');
+  setText('decision-loops', run.deliberates ? `${fmtInt(f.loops_done)} / ${budget}` : deciding);
   setText('rollouts', `${fmtInt(f.decision_rollouts)} / ${fmtInt(f.rollouts)}`);
   setText('rollout-steps', `${fmtRate(f.decision_rollout_steps)} / ${fmtRate(f.rollout_steps)}`);
   setText('truncated', fmtInt(f.truncated));
@@ -42,7 +47,7 @@ export function updateStats(runs, meter, { reveal }) {
     const line = resultLine(r);
     banner.hidden = !line;
     banner.classList.toggle('capped', r.frame.status === 'capped');
-    banner.classList.toggle('planning', !!r.frame.planning);
+    banner.classList.toggle('planning', !!r.frame.planning && !r.frame.planning.per_move);
     setText(banner, line);
   });
   if (runs.length > 1) updateScoreboard(runs, reveal);
