@@ -173,21 +173,16 @@ impl Improve {
         }
     }
 
-    /// Starts a completion from `pos` with `base` after the move `first`
-    /// (`None`: the base's own move) of at most `limit` moves: clears the
-    /// simulation and `self.scratch`, and makes the move `first`.
-    #[allow(clippy::too_many_arguments)]
-    fn begin_run(
-        &mut self,
-        torus: &Torus,
-        sensor: &Sensor,
-        belief: &BeliefState,
-        pos: u32,
-        first: Option<Move>,
-        base: Base,
-        start: Left,
-        limit: usize,
-    ) -> Run {
+    /// Starts the completion `job`: clears the simulation and
+    /// `self.scratch`, and makes the job's first move, if it has one.
+    fn begin_run(&mut self, torus: &Torus, sensor: &Sensor, belief: &BeliefState, job: Job) -> Run {
+        let Job {
+            pos,
+            first,
+            base,
+            start,
+            limit,
+        } = job;
         self.cov.clear();
         self.scratch.clear();
         let mut run = Run {
@@ -239,22 +234,30 @@ impl Improve {
             }
             let p = run.p;
             let m = match run.base {
-                Base::Cover | Base::Best => {
-                    self.cover_move(run, torus, sensor, belief, work, cells)
-                }
-                Base::Sweep => {
-                    while run.waypoint < self.sweep.len()
+                Base::Cover | Base::Best | Base::Sweep => {
+                    // The sweep heads for its first waypoint still adding
+                    // mass; past the last, and for the cover base, the walk.
+                    while run.base == Base::Sweep
+                        && run.waypoint < self.sweep.len()
                         && self.cov.gain(sensor, belief, self.sweep[run.waypoint]) <= 0.0
                     {
                         run.waypoint += 1;
                         *work += 1;
                     }
-                    match self.sweep.get(run.waypoint) {
-                        Some(&w) => {
-                            *work += COVER_MOVE_WORK;
-                            toward(torus, p, w, Move::Right)
+                    *work += COVER_MOVE_WORK;
+                    match self
+                        .sweep
+                        .get(run.waypoint)
+                        .filter(|_| run.base == Base::Sweep)
+                    {
+                        Some(&w) => toward(torus, p, w, Move::Right),
+                        None => {
+                            // A new far goal costs a scan of the cells.
+                            let scans = run.walk.scans();
+                            let m = run.walk.next_move(torus, sensor, belief, &self.cov, p);
+                            *work += (run.walk.scans() - scans) as u64 * cells;
+                            m
                         }
-                        None => self.cover_move(run, torus, sensor, belief, work, cells),
                     }
                 }
                 Base::Horizon => {
@@ -293,39 +296,10 @@ impl Improve {
         true
     }
 
-    /// The coverage walk's move in `run`, its cost added to `work` (a scan
-    /// of the `cells` when it picks a new far goal).
-    fn cover_move(
-        &mut self,
-        run: &mut Run,
-        torus: &Torus,
-        sensor: &Sensor,
-        belief: &BeliefState,
-        work: &mut u64,
-        cells: u64,
-    ) -> Move {
-        let scans = run.walk.scans();
-        let m = run.walk.next_move(torus, sensor, belief, &self.cov, run.p);
-        *work += COVER_MOVE_WORK + (run.walk.scans() - scans) as u64 * cells;
-        m
-    }
-
-    /// Completes the search from `pos` with `base` after the move `first`
-    /// (`None`: the base's own move), in one go, writing the cells into
-    /// `self.scratch` and returning `Σ R_t` over them. At most `limit` moves.
-    #[allow(clippy::too_many_arguments)]
-    fn complete(
-        &mut self,
-        torus: &Torus,
-        sensor: &Sensor,
-        belief: &BeliefState,
-        pos: u32,
-        first: Option<Move>,
-        base: Base,
-        start: Left,
-        limit: usize,
-    ) -> f64 {
-        let mut run = self.begin_run(torus, sensor, belief, pos, first, base, start, limit);
+    /// Makes the completion `job` in one go, writing the cells into
+    /// `self.scratch` and returning `Σ R_t` over them.
+    fn complete(&mut self, torus: &Torus, sensor: &Sensor, belief: &BeliefState, job: Job) -> f64 {
+        let mut run = self.begin_run(torus, sensor, belief, job);
         self.proceed(&mut run, torus, sensor, belief, &mut 0, u64::MAX);
         run.sum.value()
     }
@@ -424,16 +398,35 @@ impl Improve {
         }
     }
 
-    /// The first move and base of completion `job` of `d`.
-    fn job(&self, d: &Pending) -> (Option<Move>, Base) {
+    /// Completion number `d.job` of the decision `d` at `pos`.
+    fn job(&self, d: &Pending, pos: u32) -> Job {
         let bases = self.bases();
-        if d.job < d.own {
+        let (first, base) = if d.job < d.own {
             (None, bases[d.job])
         } else {
             let k = d.job - d.own;
             (Some(Move::ALL[k / bases.len()]), bases[k % bases.len()])
+        };
+        Job {
+            pos,
+            first,
+            base,
+            start: d.start,
+            limit: d.limit,
         }
     }
+}
+
+/// A completion to make: from `pos` with `base` after the move `first`
+/// (`None`: the base's own move), from the belief `start`, of at most
+/// `limit` moves.
+#[derive(Clone, Copy)]
+struct Job {
+    pos: u32,
+    first: Option<Move>,
+    base: Base,
+    start: Left,
+    limit: usize,
 }
 
 /// A completion under way, between slices (the improver's `cov` and
@@ -492,8 +485,8 @@ impl Searcher for Improve {
             let mut run = match d.run.take() {
                 Some(run) => run,
                 None => {
-                    let (first, base) = self.job(&d);
-                    self.begin_run(torus, sensor, belief, pos, first, base, d.start, d.limit)
+                    let job = self.job(&d, pos);
+                    self.begin_run(torus, sensor, belief, job)
                 }
             };
             if !self.proceed(&mut run, torus, sensor, belief, &mut work, self.slice) {
@@ -589,7 +582,14 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<f64, crate::config::ConfigE
     let bases = imp.bases();
     let mut best = f64::INFINITY;
     for &b in bases {
-        best = best.min(imp.complete(&g.torus, &g.sensor, &belief, g.start, None, b, start, limit));
+        let job = Job {
+            pos: g.start,
+            first: None,
+            base: b,
+            start,
+            limit,
+        };
+        best = best.min(imp.complete(&g.torus, &g.sensor, &belief, job));
     }
     // R_0, the term before any move.
     Ok(best + if start.cells == 0 { 0.0 } else { start.mass })
