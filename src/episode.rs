@@ -275,7 +275,17 @@ impl Episode {
     /// move is made or the episode has ended.
     pub fn step_move_bounded(&mut self) -> bool {
         if self.info.deliberates {
-            self.step_move();
+            // Its loops are bounded by its budget; work before them (the
+            // belief MCTS's plan) is cut as a planner's plan is.
+            let (mut slices, t0) = (0, self.budget.now());
+            while self.status == Status::Running && !self.step_loops(u32::MAX) {
+                if self.searcher.planning().is_some() {
+                    slices += 1;
+                    if slices == PLAN_CALL_SLICES || self.budget.now() - t0 >= PLAN_CALL_MS {
+                        return false;
+                    }
+                }
+            }
             return true;
         }
         self.advance_within(1, 1) == 1 || self.status != Status::Running
@@ -340,6 +350,7 @@ impl Episode {
             return moves;
         }
         let mut left = k;
+        let (mut slices, t0) = (0, self.budget.now());
         while left > 0 && self.status == Status::Running {
             let before = self.counters.rollouts;
             let moved = self.step_loops(left.min(u32::MAX as u64) as u32);
@@ -348,7 +359,15 @@ impl Episode {
             if moved {
                 moves += 1;
             } else if did == 0 {
-                break;
+                // A slice of the work before the loops (the belief MCTS's
+                // plan) is not a loop: as a planner's slices, at most
+                // PLAN_CALL_SLICES of them or PLAN_CALL_MS a call.
+                slices += 1;
+                let planning = self.searcher.planning().is_some();
+                if !planning || slices == PLAN_CALL_SLICES || self.budget.now() - t0 >= PLAN_CALL_MS
+                {
+                    break;
+                }
             }
         }
         moves
@@ -558,5 +577,53 @@ mod tests {
             }
             assert_eq!(one.path(), ep.path(), "{searcher}");
         }
+    }
+
+    #[test]
+    fn the_belief_mcts_plan_is_cut_into_calls_as_a_planner_plan_is() {
+        // pomcp at N = 96 makes a plan of thousands of horizon moves before
+        // its first loop. On a clock that stands still a call makes
+        // PLAN_CALL_SLICES slices of it, whether it is asked for 1 loop or
+        // 10 000 (advance) or for a move (step_move_bounded); once the plan
+        // is made, the loops run and count as before.
+        let cfg = Config::default().with(&[("variant", "pomcp"), ("n", "96"), ("sigma", "12")]);
+        let progress = |ep: &Episode| ep.planning().map(|p| p.done);
+        let mut one = Episode::blind(&cfg).unwrap();
+        one.set_clock(|| 0.0);
+        let mut per_slice = Vec::new();
+        for _ in 0..PLAN_CALL_SLICES {
+            assert!(!one.step_loops(1));
+            per_slice.push(progress(&one).unwrap());
+        }
+        let mut ep = Episode::blind(&cfg).unwrap();
+        ep.set_clock(|| 0.0);
+        assert_eq!(ep.advance(1), 0);
+        assert_eq!(progress(&ep), per_slice.last().copied(), "advance(1)");
+        assert_eq!(ep.advance(10_000), 0);
+        let two = progress(&ep).unwrap();
+        assert!(
+            two > per_slice[PLAN_CALL_SLICES as usize - 1],
+            "advance(10 000)"
+        );
+        assert!(!ep.step_move_bounded());
+        assert!(progress(&ep).unwrap() > two, "step_move_bounded");
+        assert_eq!(ep.counters().rollouts, 0);
+        // The plan done, a call runs its k loops (the default L = 100 a move).
+        while ep.planning().is_some() {
+            ep.advance(1);
+        }
+        let before = ep.counters().rollouts;
+        ep.advance(250);
+        assert_eq!(ep.counters().rollouts - before, 250);
+        assert_eq!(ep.steps(), 2);
+        // A clock that gains 5 ms a reading (the decision's budget reads it
+        // too) ends a call within two slices, by PLAN_CALL_MS.
+        static TICKS: AtomicU64 = AtomicU64::new(0);
+        let mut timed = Episode::blind(&cfg).unwrap();
+        timed.set_clock(|| 5.0 * TICKS.fetch_add(1, Relaxed) as f64);
+        TICKS.store(0, Relaxed);
+        assert_eq!(timed.advance(10_000), 0);
+        let p = progress(&timed).unwrap();
+        assert!(p == per_slice[0] || p == per_slice[1], "{p}: {per_slice:?}");
     }
 }

@@ -21,7 +21,7 @@ use crate::lattice::{Move, Torus};
 use crate::named::named_enum;
 use crate::rng::{self, Rng};
 use crate::searchers::plan::{fallback_target, toward};
-use crate::searchers::{Outcome, Policy, Searcher, SearcherInfo, Setup, Visit, World};
+use crate::searchers::{Outcome, Planning, Policy, Searcher, SearcherInfo, Setup, Visit, World};
 use crate::view::Layer;
 use cells::CellTable;
 use code::CodeTable;
@@ -248,6 +248,24 @@ pub trait Stats {
     fn intent(&self) -> &[u32] {
         &[]
     }
+    /// Work a decision does before its first loop, a slice at a time
+    /// (the belief MCTS makes its plan): does a slice and returns false
+    /// while some is left, true once the loops can run. It draws no random
+    /// numbers, so where the slices fall changes nothing.
+    fn prepare(
+        &mut self,
+        _torus: &Torus,
+        _sensor: &Sensor,
+        _belief: &BeliefState,
+        _root: u32,
+        _cap: u32,
+    ) -> bool {
+        true
+    }
+    /// How far the work of [`Stats::prepare`] has got, while some is left.
+    fn planning(&self) -> Option<Planning> {
+        None
+    }
     /// Ends a decision with the statistics' own choice of move, or `None`
     /// to leave it to the final rule (`cap`: the rollout step cap).
     fn conclude(
@@ -363,6 +381,12 @@ impl<S: Stats> Searcher for Mcts<S> {
             self.generation = Some(generation);
             self.stats.begin_decision(w.pos, self.reset_each_move);
         }
+        if !self
+            .stats
+            .prepare(w.torus, w.sensor, w.belief, w.pos, self.rollout_cap)
+        {
+            return None;
+        }
         let mut done = 0;
         while done < max_loops && !w.budget.spent() {
             let practice = if S::POSTERIOR_TARGETS {
@@ -422,6 +446,10 @@ impl<S: Stats> Searcher for Mcts<S> {
 
     fn intent(&self) -> &[u32] {
         self.stats.intent()
+    }
+
+    fn planning(&self) -> Option<Planning> {
+        self.stats.planning()
     }
 }
 

@@ -114,7 +114,7 @@ use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
 use crate::named::named_enum;
 use crate::rng;
-use crate::searchers::{completion, Lookahead};
+use crate::searchers::{completion, Completion, Lookahead, Planning, SLICE_WORK};
 
 named_enum! {
     /// How the belief MCTS scales returns for UCT.
@@ -217,6 +217,8 @@ pub struct BeliefTree {
     replay: bool,
     /// The move [`Stats::conclude`] chose, which keeps the plan valid.
     planned: Option<Move>,
+    /// A new plan being made in slices, before the decision's first loop.
+    making: Option<Completion>,
 }
 
 /// Follows `prefix` from `root` (each cell next to the one before), then
@@ -308,6 +310,7 @@ impl BeliefTree {
             line: Vec::new(),
             replay: false,
             planned: None,
+            making: None,
         }
     }
 
@@ -548,6 +551,57 @@ impl Stats for BeliefTree {
         }
         self.selected = [0; 4];
         self.fresh = true;
+    }
+
+    /// Makes the plan the decision's first loop would make (when the last
+    /// real move left it), in slices: [`Stats::iterate`] then finds it
+    /// valid and keeps it, so the plan is the one made at once.
+    fn prepare(
+        &mut self,
+        torus: &Torus,
+        sensor: &Sensor,
+        belief: &BeliefState,
+        root: u32,
+        cap: u32,
+    ) -> bool {
+        if self.making.is_none() {
+            // The conditions under which `reference` makes a new plan.
+            let valid =
+                self.plan_at < self.plan.len() && torus.l1(root, self.plan[self.plan_at]) == 1;
+            if !self.fresh || self.plan_depth == 0 || belief.remaining() <= NO_MASS || valid {
+                return true;
+            }
+            self.cov.clear();
+            self.plan.clear();
+            self.plan_at = 0;
+            self.making = Some(Completion::new(belief, root, None, cap as usize));
+        }
+        let run = self.making.as_mut().expect("a plan is being made");
+        let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
+        if run.moves(
+            look,
+            torus,
+            sensor,
+            belief,
+            cov,
+            plan,
+            usize::MAX,
+            SLICE_WORK,
+        ) {
+            self.making = None;
+            return true;
+        }
+        false
+    }
+
+    fn planning(&self) -> Option<Planning> {
+        let run = self.making.as_ref()?;
+        Some(Planning {
+            stage: "the horizon rule's plan, moves",
+            done: run.made() as u32,
+            total: 0,
+            per_move: false,
+        })
     }
 
     fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32] {
@@ -967,6 +1021,53 @@ mod tests {
             }
             report.expect("at least one loop")
         }
+    }
+
+    #[test]
+    fn the_plan_is_made_in_slices_before_the_first_loop_and_is_the_plan_made_at_once() {
+        // N = 96, σ = 12: the plan is thousands of horizon moves. Each
+        // think call makes a slice and returns no move; no loop runs (no
+        // rollout counted) until the plan is made; between slices the
+        // progress grows and the partial plan drawn is the start of the
+        // plan `completion` makes in one go.
+        let mut c = cfg(12.0);
+        c.n = 96;
+        let h = Hand::new(c.clone(), 0);
+        let mut look = Lookahead::new(c.pomcp_plan);
+        let mut cov = Coverage::new(h.game.torus.cells());
+        let mut whole = Vec::new();
+        completion(
+            &mut look,
+            &h.game.torus,
+            &h.game.sensor,
+            &h.belief,
+            &mut cov,
+            h.game.start,
+            None,
+            c.rollout_cap as usize,
+            &mut whole,
+        );
+        let mut ep = Episode::blind(&c).unwrap();
+        let (mut slices, mut done) = (0, 0);
+        while !ep.step_loops(1) && ep.counters().rollouts == 0 {
+            let p = ep.planning().expect("progress while the plan is made");
+            assert_eq!(p.stage, "the horizon rule's plan, moves");
+            assert!(p.done > done, "the plan grows at every slice: {p:?}");
+            assert!(!p.per_move);
+            done = p.done;
+            let drawn = ep.intent();
+            assert_eq!(drawn.len(), (done as usize).min(MAX_INTENT));
+            assert_eq!(drawn, &whole[..drawn.len()]);
+            slices += 1;
+        }
+        assert!(ep.planning().is_none());
+        assert!(slices >= 20, "{slices} slices");
+        // One slice is at most SLICE_WORK / 2·3^5 moves more than the last
+        // progress seen.
+        let per_slice = (SLICE_WORK / 486 + 1) as usize;
+        assert!(whole.len() > done as usize && whole.len() <= done as usize + per_slice);
+        assert_eq!(ep.step_move(), Status::Running);
+        assert!(ep.counters().rollouts > 0);
     }
 
     #[test]

@@ -231,7 +231,7 @@ impl Beam {
             match &mut job.stage {
                 Stage::Rule(run) => {
                     let m = moves_per_slice(torus.cells());
-                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m) {
+                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m, u64::MAX) {
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
@@ -262,7 +262,7 @@ impl Beam {
                 }
                 Stage::Tail(after, run) => {
                     let m = moves_per_slice(torus.cells());
-                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m) {
+                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m, u64::MAX) {
                         job.refiner.start(torus, sensor, mass, c, span, &job.rule);
                         job.stage = Stage::RefineRule;
                     }

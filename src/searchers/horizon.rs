@@ -243,7 +243,7 @@ pub fn completion(
 ) {
     out.clear();
     let mut run = Completion::new(belief, pos, last, cap);
-    while !run.moves(look, torus, sensor, belief, cov, out, usize::MAX) {}
+    while !run.moves(look, torus, sensor, belief, cov, out, usize::MAX, u64::MAX) {}
 }
 
 /// A [`completion`] made in slices: [`Completion::moves`] adds a few moves
@@ -259,6 +259,18 @@ pub struct Completion {
     cap: usize,
 }
 
+/// Work units one slice of a decision or plan made in slices may spend (it
+/// ends after the simulated move that reaches them): a horizon move costs
+/// its lookahead's `2·3^h` simulated moves, and a far-goal scan the
+/// lattice's cells. About half a millisecond natively.
+pub const SLICE_WORK: u64 = 20_000;
+
+/// What one horizon-rule move of `look` from a lookahead that found `gain`
+/// costs in [`SLICE_WORK`]'s units on a lattice of `cells` cells.
+pub fn move_work(look: &Lookahead, gain: f64, cells: usize) -> u64 {
+    2 * 3u64.pow(look.depth()) + if gain <= 0.0 { cells as u64 } else { 0 }
+}
+
 impl Completion {
     /// A completion from `pos` after `last`, of at most `cap` moves.
     pub fn new(belief: &BeliefState, pos: u32, last: Option<Move>, cap: usize) -> Completion {
@@ -272,8 +284,9 @@ impl Completion {
     }
 
     /// Appends up to `k` more moves to `out`, with the arguments of
-    /// [`completion`]. True when the completion is done (and `cov` is
-    /// cleared).
+    /// [`completion`], stopping early once they have cost `max_work` units
+    /// of [`SLICE_WORK`]'s kind. True when the completion is done (and
+    /// `cov` is cleared).
     #[allow(clippy::too_many_arguments)]
     pub fn moves(
         &mut self,
@@ -284,12 +297,15 @@ impl Completion {
         cov: &mut Coverage,
         out: &mut Vec<u32>,
         k: usize,
+        max_work: u64,
     ) -> bool {
+        let mut work = 0;
         for _ in 0..k {
-            if self.left == 0 || self.made >= self.cap {
+            if self.left == 0 || self.made >= self.cap || work >= max_work {
                 break;
             }
-            let (m, _, _) = decide(look, torus, sensor, belief, cov, self.p, self.last, false);
+            let (m, found, _) = decide(look, torus, sensor, belief, cov, self.p, self.last, false);
+            work += move_work(look, found.gain, torus.cells());
             self.p = torus.step(self.p, m);
             self.left -= cov.cover_counted(sensor, belief, self.p).1;
             out.push(self.p);
@@ -301,6 +317,11 @@ impl Completion {
             cov.clear();
         }
         done
+    }
+
+    /// Moves made so far.
+    pub fn made(&self) -> usize {
+        self.made
     }
 }
 

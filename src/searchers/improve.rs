@@ -24,7 +24,7 @@
 //! the horizon adds mass); `best`, all three. A decision costs
 //! 4 × (bases) completions of up to N²/3 moves each at r_v = 1.
 
-use super::horizon::{decide, Lookahead};
+use super::horizon::{decide, move_work, Lookahead, SLICE_WORK};
 use super::plan::{toward, CoverWalk, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
@@ -271,12 +271,7 @@ impl Improve {
                         run.last,
                         false,
                     );
-                    // The lookahead's simulated moves, and the far-goal
-                    // scan it makes when nothing within reach adds mass.
-                    *work += 2 * 3u64.pow(self.look.depth());
-                    if found.gain <= 0.0 {
-                        *work += cells;
-                    }
+                    *work += move_work(&self.look, found.gain, torus.cells());
                     m
                 }
             };
@@ -459,14 +454,6 @@ struct Pending {
     score: [f64; 4],
     run: Option<Run>,
 }
-
-/// Work units one slice of a decision may spend (it ends after the
-/// simulated move that reaches them): a horizon move costs its lookahead's
-/// `2·3^h` simulated moves, a coverage or sweep move [`COVER_MOVE_WORK`],
-/// and a far-goal scan the lattice's cells. About a millisecond natively at
-/// N = 40; a decision there is 5–100 slices, one at N = 512 thousands, and
-/// the page's worker ends a call after a few of them.
-const SLICE_WORK: u64 = 20_000;
 
 /// What a coverage-walk or sweep move costs in [`SLICE_WORK`]'s units (it
 /// looks at four neighbours' discs: about as long as one simulated move of

@@ -778,6 +778,25 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
   }, { viewport: { width: 390, height: 844 } });
 });
 
+/**
+ * Sends the search worker `count` usage requests, `gapMs` apart: how long
+ * each answer took (ms), and the text of `selector` after each.
+ */
+async function askWorker(page, count, gapMs, selector) {
+  const waits = [];
+  const seen = [];
+  for (let i = 0; i < count; i++) {
+    waits.push(await page.evaluate(async () => {
+      const t = performance.now();
+      await window.torusTest.request('usage');
+      return Math.round(performance.now() - t);
+    }));
+    seen.push(await page.locator(selector).textContent());
+    await page.waitForTimeout(gapMs);
+  }
+  return { waits, seen };
+}
+
 test('a planner whose moves take seconds keeps the search worker answering at full speed, and shows how far its decision has got', { timeout: 120_000 }, async () => {
   // Rollout improvement with base horizon at N = 128 and a wide prior takes
   // about 2 s a move in wasm (four completions of thousands of horizon moves).
@@ -786,17 +805,8 @@ test('a planner whose moves take seconds keeps the search worker answering at fu
   // answer. Then each move's decision was one call: seconds without one.
   // Now a decision is made in slices of bounded work.
   await withApp('?searcher=improve&base=horizon&n=128&sigma=16&speed=max', async (page) => {
-    const waits = [];
-    const progress = new Set();
-    for (let i = 0; i < 8; i++) {
-      waits.push(await page.evaluate(async () => {
-        const t = performance.now();
-        await window.torusTest.request('usage');
-        return Math.round(performance.now() - t);
-      }));
-      progress.add(await page.locator('#decision-loops').textContent());
-      await page.waitForTimeout(500);
-    }
+    const { waits, seen } = await askWorker(page, 8, 500, '#decision-loops');
+    const progress = new Set(seen);
     assert.ok(Math.max(...waits) < 1_000, `the worker answered in ${waits.join(', ')} ms`);
     assert.equal(await page.locator('#decision-loops-label').textContent(), 'This move');
     const shown = [...progress].filter((t) => /^completing the search after each move \d+ of \d+$/.test(t));
@@ -804,6 +814,17 @@ test('a planner whose moves take seconds keeps the search worker answering at fu
     // A decision made every move does not take the board's banner.
     assert.ok(await page.locator('#board-0 .banner').isHidden(), 'no planning banner');
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
+  });
+});
+
+test('the belief MCTS makes its plan in slices: on a large lattice the worker answers and the board shows the plan growing', { timeout: 120_000 }, async () => {
+  // At N = 1024 its plan (the horizon rule's path, up to the rollout cap of
+  // 10 000 moves) once took the first loop 9.3 s, with no answer meanwhile.
+  await withApp('?variant=pomcp&n=1024&speed=max', async (page) => {
+    const { waits, seen: banners } = await askWorker(page, 6, 300, '#board-0 .banner');
+    assert.ok(Math.max(...waits) < 1_000, `the worker answered in ${waits.join(', ')} ms`);
+    const moves = banners.map((b) => /^Planning: the horizon rule's plan, moves (\d+)…$/.exec(b)).filter(Boolean).map((m) => Number(m[1]));
+    assert.ok(moves.length >= 2 && moves.at(-1) > moves[0], `the plan grows on the banner: ${banners.join(' | ')}`);
   });
 });
 
