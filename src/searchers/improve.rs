@@ -22,7 +22,10 @@
 //! the first waypoint still adding mass); `horizon`, the receding-horizon
 //! rule of depth `horizon` (its far-goal fallback only when nothing within
 //! the horizon adds mass); `best`, all three. A decision costs
-//! 4 × (bases) completions of up to N²/3 moves each at r_v = 1.
+//! 4 × (bases) completions of up to N²/3 moves each at r_v = 1, so it is
+//! made in slices of bounded work ([`SLICE_WORK`]), each completion resumed
+//! where a slice stopped: the page's worker answers between slices, and the
+//! moves do not depend on where the slices fall.
 
 use super::horizon::{decide, move_work, Lookahead, SLICE_WORK};
 use super::plan::{toward, CoverWalk, Sum};
