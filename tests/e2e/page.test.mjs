@@ -825,6 +825,8 @@ test('the belief MCTS makes its plan in slices: on a large lattice the worker an
     assert.ok(Math.max(...waits) < 1_000, `the worker answered in ${waits.join(', ')} ms`);
     const moves = banners.map((b) => /^Planning: the horizon rule's plan, moves (\d+)…$/.exec(b)).filter(Boolean).map((m) => Number(m[1]));
     assert.ok(moves.length >= 2 && moves.at(-1) > moves[0], `the plan grows on the banner: ${banners.join(' | ')}`);
+    // The decision panel says why no loop has run yet.
+    assert.match(await page.locator('#decision-note').textContent(), /is making its plan before the first loop \(the horizon rule's plan, moves \d+\)/);
   });
 });
 

@@ -106,5 +106,8 @@ export function updateDecision(run) {
     }
   }
   if (run.config.variant === 'cells') note += ' (cells: N(vᵢ) counts every rollout that passed through the neighbour.)';
+  // The belief MCTS makes its plan before the decision's first loop.
+  const p = run.frame.planning;
+  if (p) note = `${run.label} is making its plan before the first loop (${planningText(p)}); the Planned path layer shows the path it is working on. ${note}`;
   setText('decision-note', note);
 }
