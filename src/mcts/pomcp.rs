@@ -601,6 +601,8 @@ impl Stats for BeliefTree {
             done: run.made() as u32,
             total: 0,
             per_move: false,
+            inner: 0,
+            inner_unit: "",
         })
     }
 

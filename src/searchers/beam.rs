@@ -329,6 +329,8 @@ impl Beam {
             done: done as u32,
             total: total as u32,
             per_move: false,
+            inner: 0,
+            inner_unit: "",
         })
     }
 }

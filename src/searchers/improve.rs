@@ -542,6 +542,13 @@ impl Searcher for Improve {
             done: d.job as u32,
             total: d.jobs as u32,
             per_move: true,
+            // The completion under way has made this many moves so far.
+            inner: if d.run.is_some() {
+                self.scratch.len() as u32
+            } else {
+                0
+            },
+            inner_unit: "moves into the one under way",
         })
     }
 }

@@ -115,6 +115,12 @@ pub struct Planning {
     /// True for work every move's decision does (rollout improvement's
     /// completions), false for a plan made once before the moves (the beam).
     pub per_move: bool,
+    /// How far the step under way has got, in `inner_unit` (0 and "" when
+    /// the stage does not say): a completion of rollout improvement takes
+    /// seconds on a large lattice, so its moves show the work going on.
+    pub inner: u32,
+    /// What `inner` counts, for people.
+    pub inner_unit: &'static str,
 }
 
 /// A planner's score of each of the four moves (in `Move::ALL` order) and

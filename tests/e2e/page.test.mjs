@@ -809,7 +809,7 @@ test('a planner whose moves take seconds keeps the search worker answering at fu
     const progress = new Set(seen);
     assert.ok(Math.max(...waits) < 1_000, `the worker answered in ${waits.join(', ')} ms`);
     assert.equal(await page.locator('#decision-loops-label').textContent(), 'This move');
-    const shown = [...progress].filter((t) => /^completing the search after each move \d+ of \d+$/.test(t));
+    const shown = [...progress].filter((t) => /^completing the search after each move \d+ of \d+ \([\d,]+ moves into the one under way\)$/.test(t));
     assert.ok(shown.length >= 2, `the decision's progress shows: ${[...progress].join(' | ')}`);
     // A decision made every move does not take the board's banner.
     assert.ok(await page.locator('#board-0 .banner').isHidden(), 'no planning banner');

@@ -8,7 +8,8 @@ import { $, setText, fmtInt, fmtRate } from '../ui.js';
 const fmtRatio = (r) => (r === null || r === undefined ? '–' : r.toFixed(2));
 
 /** "beam search, depth 37 of 200", from the engine's progress of a plan being made. */
-export const planningText = (p) => `${p.stage} ${p.total ? `${p.done} of ${p.total}` : p.done}`;
+export const planningText = (p) =>
+  `${p.stage} ${p.total ? `${p.done} of ${p.total}` : p.done}${p.inner_unit ? ` (${fmtInt(p.inner)} ${p.inner_unit})` : ''}`;
 
 function resultLine(run) {
   const f = run.frame;
