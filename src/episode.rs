@@ -127,6 +127,29 @@ pub const PLAN_CALL_MS: f64 = 8.0;
 /// of moves takes under PLAN_CALL_MS ÷ 64.
 const MAX_STRIDE: u64 = 1024;
 
+/// One call's share of the slices of a plan being made (or of the work
+/// before a decision's loops): [`PLAN_CALL_SLICES`] of them, or as many as
+/// fit in [`PLAN_CALL_MS`] from the start of the call.
+struct CallShare {
+    slices: u32,
+    t0: f64,
+}
+
+impl CallShare {
+    fn new(budget: &Budget) -> CallShare {
+        CallShare {
+            slices: 0,
+            t0: budget.now(),
+        }
+    }
+
+    /// Counts one more slice; true when the call has had its share.
+    fn slice(&mut self, budget: &Budget) -> bool {
+        self.slices += 1;
+        self.slices == PLAN_CALL_SLICES || budget.now() - self.t0 >= PLAN_CALL_MS
+    }
+}
+
 /// One trial, advanced move by move or loop by loop.
 pub struct Episode {
     cfg: Config,
@@ -277,13 +300,10 @@ impl Episode {
         if self.info.deliberates {
             // Its loops are bounded by its budget; work before them (the
             // belief MCTS's plan) is cut as a planner's plan is.
-            let (mut slices, t0) = (0, self.budget.now());
+            let mut share = CallShare::new(&self.budget);
             while self.status == Status::Running && !self.step_loops(u32::MAX) {
-                if self.searcher.planning().is_some() {
-                    slices += 1;
-                    if slices == PLAN_CALL_SLICES || self.budget.now() - t0 >= PLAN_CALL_MS {
-                        return false;
-                    }
+                if self.searcher.planning().is_some() && share.slice(&self.budget) {
+                    return false;
                 }
             }
             return true;
@@ -307,7 +327,8 @@ impl Episode {
     pub fn advance_within(&mut self, k: u64, max_moves: u64) -> u64 {
         let mut moves = 0;
         if !self.info.deliberates {
-            let (mut slices, t0) = (0, self.budget.now());
+            let mut share = CallShare::new(&self.budget);
+            let t0 = share.t0;
             // The call also ends once PLAN_CALL_MS has passed after a move:
             // the caller sizes `k` from the moves it has timed, and a move of
             // a planner on a large lattice (rollout improvement at N = 512)
@@ -327,9 +348,7 @@ impl Episode {
                 // slice a frame would take minutes. Only the pace depends
                 // on the clock, never the plan.
                 while !self.step_loops(1) {
-                    slices += 1;
-                    let spent = self.budget.now() - t0 >= PLAN_CALL_MS;
-                    if self.status != Status::Running || slices == PLAN_CALL_SLICES || spent {
+                    if share.slice(&self.budget) || self.status != Status::Running {
                         break 'calls;
                     }
                 }
@@ -350,7 +369,7 @@ impl Episode {
             return moves;
         }
         let mut left = k;
-        let (mut slices, t0) = (0, self.budget.now());
+        let mut share = CallShare::new(&self.budget);
         while left > 0 && self.status == Status::Running {
             let before = self.counters.rollouts;
             let moved = self.step_loops(left.min(u32::MAX as u64) as u32);
@@ -362,10 +381,7 @@ impl Episode {
                 // A slice of the work before the loops (the belief MCTS's
                 // plan) is not a loop: as a planner's slices, at most
                 // PLAN_CALL_SLICES of them or PLAN_CALL_MS a call.
-                slices += 1;
-                let planning = self.searcher.planning().is_some();
-                if !planning || slices == PLAN_CALL_SLICES || self.budget.now() - t0 >= PLAN_CALL_MS
-                {
+                if self.searcher.planning().is_none() || share.slice(&self.budget) {
                     break;
                 }
             }
