@@ -314,6 +314,12 @@ impl BeliefTree {
         }
     }
 
+    /// True when the plan's next cell is a neighbour of `root` (a real move
+    /// that left the plan invalidates it).
+    fn plan_holds(&self, torus: &Torus, root: u32) -> bool {
+        self.plan_at < self.plan.len() && torus.l1(root, self.plan[self.plan_at]) == 1
+    }
+
     /// True while the searcher holds a plan (rollouts follow it).
     fn planning(&self) -> bool {
         self.plan_depth > 0 && self.plan_at < self.plan.len()
@@ -443,8 +449,7 @@ impl BeliefTree {
     fn plan_reference(&mut self, env: &mut LoopEnv<'_>, mass: f64) {
         let root = self.nodes[0].cell;
         let (torus, sensor, belief) = (env.torus, env.sensor, env.belief);
-        let valid = self.plan_at < self.plan.len() && torus.l1(root, self.plan[self.plan_at]) == 1;
-        if !valid {
+        if !self.plan_holds(torus, root) {
             self.cov.clear();
             let cap = env.rollout_cap as usize;
             completion(
@@ -566,9 +571,8 @@ impl Stats for BeliefTree {
     ) -> bool {
         if self.making.is_none() {
             // The conditions under which `reference` makes a new plan.
-            let valid =
-                self.plan_at < self.plan.len() && torus.l1(root, self.plan[self.plan_at]) == 1;
-            if !self.fresh || self.plan_depth == 0 || belief.remaining() <= NO_MASS || valid {
+            let holds = self.plan_holds(torus, root);
+            if !self.fresh || self.plan_depth == 0 || belief.remaining() <= NO_MASS || holds {
                 return true;
             }
             self.cov.clear();
@@ -596,14 +600,11 @@ impl Stats for BeliefTree {
 
     fn planning(&self) -> Option<Planning> {
         let run = self.making.as_ref()?;
-        Some(Planning {
-            stage: "the horizon rule's plan, moves",
-            done: run.made() as u32,
-            total: 0,
-            per_move: false,
-            inner: 0,
-            inner_unit: "",
-        })
+        Some(Planning::plan(
+            "the horizon rule's plan, moves",
+            run.made() as u32,
+            0,
+        ))
     }
 
     fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32] {

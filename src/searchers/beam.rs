@@ -324,14 +324,7 @@ impl Beam {
                 (stage, i, len)
             }
         };
-        Some(Planning {
-            stage,
-            done: done as u32,
-            total: total as u32,
-            per_move: false,
-            inner: 0,
-            inner_unit: "",
-        })
+        Some(Planning::plan(stage, done as u32, total as u32))
     }
 }
 

@@ -123,6 +123,21 @@ pub struct Planning {
     pub inner_unit: &'static str,
 }
 
+impl Planning {
+    /// The progress of a plan made once before the moves: `done` of `total`
+    /// steps of `stage`, nothing finer.
+    pub fn plan(stage: &'static str, done: u32, total: u32) -> Planning {
+        Planning {
+            stage,
+            done,
+            total,
+            per_move: false,
+            inner: 0,
+            inner_unit: "",
+        }
+    }
+}
+
 /// A planner's score of each of the four moves (in `Move::ALL` order) and
 /// what the score means, so the page can explain the choice without
 /// computing anything.
