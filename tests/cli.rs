@@ -92,11 +92,11 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
         ),
         (
             &["run", "--searcher", "rw", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve, beam), got rw",
+            "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got rw",
         ),
         (
             &["run", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve, beam), got mcts",
+            "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got mcts",
         ),
         (
             &["run", "--searcher", "sweep", "--known", "--exact"],
@@ -108,7 +108,7 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
         ),
         (
             &["run", "--searcher", "bogus"],
-            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, beam, got bogus",
+            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, beam, spiral, got bogus",
         ),
         (
             &["run", "--loops", "5", "--decision-ms", "2"],

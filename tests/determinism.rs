@@ -189,6 +189,14 @@ fn cases() -> Vec<(&'static str, Config)> {
                 ..small()
             },
         ),
+        (
+            "spiral",
+            Config {
+                searcher: searcher("spiral"),
+                sigma: 4.0,
+                ..small()
+            },
+        ),
     ]
 }
 
@@ -212,8 +220,9 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// When the belief MCTS started from a plan (`pomcp_plan`, issue 11) the
 /// `pomcp` case was re-pinned; `pomcp cut` sets `pomcp_plan` 0 and keeps
 /// its value, and `pomcp plan cut` pins the plan with the cut. `beam` was
-/// added with the beam planner (issue 11).
-const PINNED: [u64; 19] = [
+/// added with the beam planner, `spiral` with the spiral planner (both
+/// issue 11).
+const PINNED: [u64; 20] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
     0xd0c17705468deac1,
@@ -233,6 +242,7 @@ const PINNED: [u64; 19] = [
     0x5a568ac79c3787d6,
     0x6be7bf1f2b5dfc48,
     0x242d9878f2a7c99f,
+    0x3b1e5ef2507f25c4,
 ];
 
 #[wasm_bindgen_test(unsupported = test)]

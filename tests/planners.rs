@@ -1,7 +1,7 @@
-//! The belief planners (sweep, receding horizon, rollout improvement) and
-//! their exact evaluation: the exact mean agrees with sampled trials,
-//! rollout improvement never loses to its base, and on tiny lattices the
-//! bound ≤ the dynamic-programming optimum ≤ every planner.
+//! The belief planners (sweep, receding horizon, rollout improvement, beam,
+//! spiral) and their exact evaluation: the exact mean agrees with sampled
+//! trials, rollout improvement never loses to its base, and on tiny
+//! lattices the bound ≤ the dynamic-programming optimum ≤ every planner.
 #![cfg(not(target_arch = "wasm32"))]
 
 mod common;
@@ -30,6 +30,7 @@ fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
     let mut v = vec![
         ("sweep".to_string(), planner("sweep", n, prior, sigma)),
         ("horizon".to_string(), planner("horizon", n, prior, sigma)),
+        ("spiral".to_string(), planner("spiral", n, prior, sigma)),
         (
             "beam".to_string(),
             Config {

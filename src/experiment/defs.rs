@@ -542,7 +542,8 @@ mod tests {
                 "Sweep",
                 "Receding horizon",
                 "Rollout improvement",
-                "Beam planner"
+                "Beam planner",
+                "Spiral planner"
             ]
         );
         // The unit tests' shuttle searcher is registered here but left out.

@@ -425,12 +425,12 @@ mod tests {
         assert_eq!(p.points[1].config.loops, 200);
         assert_eq!(c.final_rule.name(), "uct", "the preset applies");
         let p = plan(r#"{"name":"sigma-sweep","seed":"9"}"#).unwrap();
-        assert_eq!(p.points.len(), 9 * 11);
+        assert_eq!(p.points.len(), 10 * 11);
         assert_eq!(p.header.series[0], "MCTS, RW rollouts");
         let last = &p.points[p.points.len() - 1].config;
         assert_eq!(
             (last.searcher.name(), last.sigma, last.seed),
-            ("beam", 10.0, 9)
+            ("spiral", 10.0, 9)
         );
         assert_eq!(p.points[11].config.rollout.name(), "levy");
     }

@@ -19,6 +19,7 @@ pub mod plan;
 mod policy;
 mod random_walk;
 mod refine;
+mod spiral;
 mod sweep;
 
 pub use beam::{Beam, DEFAULT_BEAM_DEPTH, DEFAULT_BEAM_WIDTH, MAX_BEAM};
@@ -202,6 +203,7 @@ pub static REGISTRY: &[&SearcherInfo] = &[
     &horizon::INFO,
     &improve::INFO,
     &beam::INFO,
+    &spiral::INFO,
     #[cfg(test)]
     &tests::STAND_STILL,
 ];

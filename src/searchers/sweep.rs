@@ -51,7 +51,7 @@ pub static INFO: SearcherInfo = SearcherInfo {
 };
 
 /// How far the sensor reaches along an axis.
-fn axis_reach(sensor: &Sensor) -> i64 {
+pub(super) fn axis_reach(sensor: &Sensor) -> i64 {
     sensor
         .offsets()
         .iter()
