@@ -473,8 +473,9 @@ impl Searcher for Spiral {
 
     fn planning(&self) -> Option<Planning> {
         self.job.as_deref().map(|job| Planning {
-            stage: "spiral shapes tried",
-            done: job.shape,
+            stage: "spiral shape",
+            // The shape under way, counted from 1.
+            done: job.shape + 1,
             total: SHAPES,
             per_move: false,
             inner: job.cand.len() as u32,

@@ -101,7 +101,7 @@ test('a painted prior survives the URL', () => {
 });
 
 test('race opponents come from the searcher registry', () => {
-  assert.deepEqual(races.map((r) => r.id), ['', 'mcts-cells', 'mcts-tree', 'mcts-code', 'mcts-pomcp', 'rw', 'levy', 'nsarw', 'sweep', 'horizon', 'improve', 'beam']);
+  assert.deepEqual(races.map((r) => r.id), ['', 'mcts-cells', 'mcts-tree', 'mcts-code', 'mcts-pomcp', 'rw', 'levy', 'nsarw', 'sweep', 'horizon', 'improve', 'beam', 'spiral']);
   const tree = races.find((r) => r.id === 'mcts-tree');
   assert.deepEqual(tree.pairs, [['searcher', 'mcts'], ['variant', 'tree']]);
 });

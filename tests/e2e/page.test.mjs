@@ -830,6 +830,33 @@ test('the belief MCTS makes its plan in slices: on a large lattice the worker an
   });
 });
 
+test('the spiral planner makes its plan in slices on a large lattice, then follows it with unit moves', { timeout: 120_000 }, async () => {
+  // At N = 1024 each of its 16 shapes is a walk of up to 350 000 moves:
+  // about 0.2 s in all, made a slice at a time between frames.
+  await withApp('?searcher=spiral&n=1024&sigma=128&speed=max', async (page) => {
+    const seen = await page.evaluate(async () => {
+      const out = [];
+      const t0 = performance.now();
+      while (performance.now() - t0 < 60_000) {
+        const r = window.torusTest.runs()[0];
+        if (r?.planning) out.push({ ...r.planning, steps: r.steps, banner: document.querySelector('#board-0 .banner')?.textContent ?? '' });
+        if (r && r.steps > 0) break;
+        await new Promise((res) => requestAnimationFrame(res));
+      }
+      return out;
+    });
+    assert.ok(seen.length >= 3, `progress seen in ${seen.length} frames`);
+    assert.ok(seen.every((p) => p.steps === 0 && p.stage === 'spiral shape' && p.total === 16));
+    const shapes = seen.map((p) => p.done);
+    assert.ok(shapes.at(-1) > shapes[0], `the shape under way moves on: ${shapes.join(', ')}`);
+    assert.ok(seen.some((p) => /^Planning: spiral shape \d+ of 16 \([\d,]+ moves into the one under way\)…$/.test(p.banner)), seen.map((p) => p.banner).join(' | '));
+    await page.waitForFunction(() => window.torusTest.runs()[0].steps >= 200, null, { timeout: 60_000 });
+    const r = (await page.evaluate(() => window.torusTest.runs()))[0];
+    assert.equal(r.planning, null);
+    assertUnitSteps(await mainPath(page), r.n);
+  });
+});
+
 test('every control lies within its panel and the page never scrolls sideways, at phone to wide widths, in both views', { timeout: 120_000 }, async () => {
   // A select is as wide as its longest option unless the layout says
   // otherwise: the configuration's right column once stuck out of its panel
