@@ -180,6 +180,8 @@ struct Job {
     cand: Vec<u32>,
     /// Cells covered by the shape under way carry its stamp.
     stamp: Vec<u32>,
+    /// The planning mass left before the plan.
+    total: Sum,
     /// Mass and cells with mass the shape has not covered; its `Σ R_t`.
     left_mass: Sum,
     left_cells: u32,
@@ -239,6 +241,10 @@ impl Spiral {
             }
         }
         let s = 2 * axis_reach(sensor) + 1;
+        let mut total = Sum::default();
+        for &m in &mass {
+            total.add(m);
+        }
         let mut job = Box::new(Job {
             cells: mass.iter().filter(|&&m| m > 0.0).count() as u32,
             mass,
@@ -251,7 +257,8 @@ impl Spiral {
             phase: Phase::Spiral,
             cand: Vec::new(),
             stamp: vec![0; torus.cells()],
-            left_mass: Sum::default(),
+            total,
+            left_mass: total,
             left_cells: 0,
             sum: Sum::default(),
             holes: Vec::new(),
@@ -295,11 +302,7 @@ impl Job {
         self.phase = Phase::Spiral;
         self.cand.clear();
         // Stamps start at 1, so a fresh lattice (all 0) is uncovered.
-        let mut left = Sum::default();
-        for &m in &self.mass {
-            left.add(m);
-        }
-        self.left_mass = left;
+        self.left_mass = self.total;
         self.left_cells = self.cells;
         self.sum = Sum::default();
         self.cover(sensor, self.pos);
@@ -419,12 +422,12 @@ impl Searcher for Spiral {
                 .get(self.next)
                 .is_some_and(|&c| w.torus.l1(w.pos, c) == 1);
         if !on_plan {
-            let done = self.planned && self.next >= self.plan.len();
-            if done && super::plan::mass_cells_left(w.belief) == 0 {
+            if self.job.is_none() && super::plan::mass_cells_left(w.belief) == 0 {
                 // Every cell with planning mass is searched: the target is
                 // where the planning prior put none, so sweep for it.
                 self.plan.clear();
                 self.next = 0;
+                self.planned = true;
                 sweep_path(
                     w.torus,
                     w.sensor,
@@ -616,6 +619,25 @@ mod tests {
         // A simulated move covers 5 cells at r_v = 1: about 4 000 moves a
         // slice, so dozens of slices at this size.
         assert!(calls > 20, "{calls} slices");
+    }
+
+    #[test]
+    fn a_target_the_prior_ruled_out_is_found_by_sweeping_after_the_plan() {
+        // A delta prior at the centre and a fixed target elsewhere: the plan
+        // is the walk to the centre, and then the torus is swept.
+        let cfg = Config {
+            n: 12,
+            prior: PriorKind::Delta,
+            target: Some([3, 9]),
+            searcher: crate::searchers::SearcherId::parse("spiral").unwrap(),
+            ..Config::default()
+        };
+        let mut e = crate::episode::Episode::trial(&cfg, 0).unwrap();
+        let r = e.run();
+        assert!(r.found, "not found in {} steps", r.steps);
+        // The walk to the centre (11 moves), then at most one helix sweep
+        // (4 passes of 11 moves and the steps between them).
+        assert!(r.steps <= 11 + 4 * 11 + 12, "{} steps", r.steps);
     }
 
     #[test]
