@@ -44,7 +44,7 @@ const MEANING: &str =
 pub static INFO: SearcherInfo = SearcherInfo {
     name: "horizon",
     label: "Receding horizon",
-    help: "tries every move sequence of depth h and takes the first move of the one that covers planning mass earliest; heads for the best far cell when that is better",
+    help: "tries every move sequence of depth h and takes the first move of the one that covers planning mass earliest; heads for the best far cell when that is better; on priors much wider than the sensor (σ of 30 cells or more) it runs on into the tail, where the spiral planner does better",
     deterministic: true,
     deliberates: false,
     uses: |_, key| key == "horizon",
