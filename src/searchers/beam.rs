@@ -37,6 +37,7 @@
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
 use super::horizon::{decide, Completion, Lookahead};
+use super::plan::PlannedPath;
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
@@ -107,10 +108,8 @@ pub struct Beam {
     step_cap: u32,
     look: Lookahead,
     cov: Coverage,
-    /// The cells still to enter, from `next`.
-    plan: Vec<u32>,
-    next: usize,
-    planned: bool,
+    /// The plan being followed.
+    plan: PlannedPath,
     last: Option<Move>,
     /// The plan being made, between slices.
     job: Option<Box<Job>>,
@@ -167,9 +166,7 @@ impl Beam {
             step_cap: cfg.step_cap,
             look: Lookahead::new(cfg.horizon),
             cov: Coverage::new(torus.cells()),
-            plan: Vec::new(),
-            next: 0,
-            planned: false,
+            plan: PlannedPath::default(),
             last: None,
             job: None,
         }
@@ -196,9 +193,7 @@ impl Beam {
         };
         let plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, plan)) = plans.iter().find(|(k, _)| *k == key) {
-            self.plan.clone_from(plan);
-            self.next = 0;
-            self.planned = true;
+            self.plan.start().clone_from(plan);
             return;
         }
         drop(plans);
@@ -284,16 +279,15 @@ impl Beam {
                         } else {
                             &job.rule
                         };
-                        self.plan.clear();
-                        self.plan.extend_from_slice(&plan[1..]);
+                        let cells = self.plan.start();
+                        cells.extend_from_slice(&plan[1..]);
+                        let cells = cells.clone();
                         let job = self.job.take().expect("the job under way");
                         let mut plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
                         if plans.len() == KEPT {
                             plans.remove(0);
                         }
-                        plans.push((job.key, self.plan.clone()));
-                        self.next = 0;
-                        self.planned = true;
+                        plans.push((job.key, cells));
                         return true;
                     }
                 }
@@ -667,13 +661,8 @@ fn with_xy(torus: &Torus, cells: &[u32]) -> Vec<(u32, u32, u32)> {
 
 impl Searcher for Beam {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
-        let done = self.planned && self.next >= self.plan.len();
-        let on_plan = self.planned
-            && self
-                .plan
-                .get(self.next)
-                .is_some_and(|&c| w.torus.l1(w.pos, c) == 1);
-        if !on_plan && !done {
+        let done = self.plan.walked();
+        if !self.plan.on_plan(w.torus, w.pos) && !done {
             if self.job.is_none() {
                 self.begin(w.torus, w.belief, w.pos);
             }
@@ -683,7 +672,7 @@ impl Searcher for Beam {
                 return None;
             }
         }
-        if let Some(&c) = self.plan.get(self.next) {
+        if let Some(c) = self.plan.next_cell() {
             return Some(w.torus.move_to(w.pos, c).unwrap_or(Move::Right));
         }
         // The plan covered every cell with mass (only a step cap or a
@@ -704,11 +693,7 @@ impl Searcher for Beam {
 
     fn observe(&mut self, _torus: &Torus, m: Move, pos: u32) {
         self.last = Some(m);
-        if self.plan.get(self.next) == Some(&pos) {
-            self.next += 1;
-        } else {
-            self.planned = false;
-        }
+        self.plan.observe(pos);
     }
 
     fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
@@ -726,7 +711,7 @@ impl Searcher for Beam {
                 Stage::Search(_) => &job.sketch,
                 Stage::Tail(..) | Stage::RefineBeam => &job.beam,
             },
-            None => &self.plan[self.next.min(self.plan.len())..],
+            None => self.plan.ahead(),
         }
     }
 

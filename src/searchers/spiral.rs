@@ -41,7 +41,7 @@
 //! and shows the progress ([`Searcher::planning`]). Where a slice ends
 //! depends only on work, so slicing changes nothing in the plan.
 
-use super::plan::toward;
+use super::plan::{toward, PlannedPath};
 use super::sweep::{axis_reach, sweep_path, SweepPattern};
 use super::{Planning, Searcher, SearcherInfo, World, SLICE_WORK};
 use crate::belief::BeliefState;
@@ -198,9 +198,7 @@ pub struct Spiral {
     step_cap: u32,
     /// Cells of the plan shown ahead of the searcher.
     intent_len: usize,
-    plan: Vec<u32>,
-    next: usize,
-    planned: bool,
+    plan: PlannedPath,
     job: Option<Box<Job>>,
     /// Shapes finished by the last plan made (for tests).
     #[cfg(test)]
@@ -213,9 +211,7 @@ impl Spiral {
         Spiral {
             step_cap,
             intent_len: 2 * torus.n() as usize,
-            plan: Vec::new(),
-            next: 0,
-            planned: false,
+            plan: PlannedPath::default(),
             job: None,
             #[cfg(test)]
             shapes_done: 0,
@@ -267,7 +263,6 @@ impl Spiral {
         });
         job.start_shape(torus, sensor, 0);
         self.job = Some(job);
-        self.planned = false;
     }
 
     /// Makes up to `slices` slices of the plan under way; true once it is
@@ -282,9 +277,7 @@ impl Spiral {
                 {
                     self.shapes_done = job.shape;
                 }
-                self.plan = std::mem::take(&mut job.best);
-                self.next = 0;
-                self.planned = true;
+                *self.plan.start() = std::mem::take(&mut job.best);
                 self.job = None;
                 return true;
             }
@@ -416,25 +409,12 @@ impl Job {
 
 impl Searcher for Spiral {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
-        let on_plan = self.planned
-            && self
-                .plan
-                .get(self.next)
-                .is_some_and(|&c| w.torus.l1(w.pos, c) == 1);
-        if !on_plan {
+        if !self.plan.on_plan(w.torus, w.pos) {
             if self.job.is_none() && super::plan::mass_cells_left(w.belief) == 0 {
                 // Every cell with planning mass is searched: the target is
                 // where the planning prior put none, so sweep for it.
-                self.plan.clear();
-                self.next = 0;
-                self.planned = true;
-                sweep_path(
-                    w.torus,
-                    w.sensor,
-                    w.pos,
-                    SweepPattern::Helix,
-                    &mut self.plan,
-                );
+                let cells = self.plan.start();
+                sweep_path(w.torus, w.sensor, w.pos, SweepPattern::Helix, cells);
             } else {
                 if self.job.is_none() {
                     self.begin(w.torus, w.sensor, w.belief, w.pos);
@@ -446,16 +426,12 @@ impl Searcher for Spiral {
                 }
             }
         }
-        let to = self.plan.get(self.next).copied().unwrap_or(w.pos);
+        let to = self.plan.next_cell().unwrap_or(w.pos);
         Some(w.torus.move_to(w.pos, to).unwrap_or(Move::Right))
     }
 
     fn observe(&mut self, _torus: &Torus, _m: Move, pos: u32) {
-        if self.plan.get(self.next) == Some(&pos) {
-            self.next += 1;
-        } else {
-            self.planned = false;
-        }
+        self.plan.observe(pos);
     }
 
     fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
@@ -469,7 +445,7 @@ impl Searcher for Spiral {
     fn intent(&self) -> &[u32] {
         let cells = match self.job.as_deref() {
             Some(job) => &job.cand[..],
-            None => &self.plan[self.next.min(self.plan.len())..],
+            None => self.plan.ahead(),
         };
         &cells[..cells.len().min(self.intent_len)]
     }
@@ -512,7 +488,7 @@ mod tests {
             calls += 1;
         }
         assert_eq!(sp.shapes_done + 1, SHAPES, "every shape was tried");
-        (sp.plan, calls)
+        (sp.plan.ahead().to_vec(), calls)
     }
 
     /// Shape `shape` in full, never cut short by a better one.
