@@ -44,9 +44,7 @@ use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
 use crate::rng::splitmix64;
-use crate::view::Layer;
 use std::collections::HashSet;
 use std::sync::Mutex;
 
@@ -694,14 +692,6 @@ impl Searcher for Beam {
     fn observe(&mut self, _torus: &Torus, m: Move, pos: u32) {
         self.last = Some(m);
         self.plan.observe(pos);
-    }
-
-    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-        None
-    }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
     }
 
     fn intent(&self) -> &[u32] {

@@ -26,8 +26,6 @@ use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
-use crate::view::Layer;
 
 /// The largest horizon: `2·3^h` simulated moves per decision stays under
 /// 10⁵ (about 1 ms natively at r_v = 1).
@@ -388,14 +386,6 @@ impl Searcher for Horizon {
         if !self.intent.is_empty() {
             self.intent.remove(0);
         }
-    }
-
-    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-        None
-    }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
     }
 
     fn intent(&self) -> &[u32] {

@@ -35,9 +35,7 @@ use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
 use crate::named::named_enum;
-use crate::view::Layer;
 
 named_enum! {
     /// The base policy that rollout improvement completes searches with.
@@ -517,14 +515,6 @@ impl Searcher for Improve {
             self.incumbent.clear();
             self.inc_at = 0;
         }
-    }
-
-    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-        None
-    }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
     }
 
     fn intent(&self) -> &[u32] {

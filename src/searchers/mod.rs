@@ -78,11 +78,19 @@ pub trait Searcher {
     fn observe(&mut self, torus: &Torus, m: Move, pos: u32);
 
     /// The per-cell counts drawn as heat layer `layer`, if this searcher
-    /// has them (`scratch` is room for counts it must assemble).
-    fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]>;
+    /// has them (`scratch` is room for counts it must assemble; none by
+    /// default).
+    fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
+        let _ = (layer, scratch);
+        None
+    }
 
-    /// The decision under way at `pos`, for a searcher that deliberates.
-    fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView>;
+    /// The decision under way at `pos`, for a searcher that deliberates
+    /// (none by default).
+    fn decision(&self, torus: &Torus, pos: u32) -> Option<DecisionView> {
+        let _ = (torus, pos);
+        None
+    }
 
     /// The cells a planner means to enter next, in order (empty for a
     /// searcher that does not plan a path); the page draws it as a layer.
@@ -304,10 +312,6 @@ impl Searcher for Walker {
             _ => None,
         }
     }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
-    }
 }
 
 #[cfg(test)]
@@ -330,12 +334,6 @@ mod tests {
             Some(if self.up { Move::Up } else { Move::Down })
         }
         fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {}
-        fn counts<'a>(&'a self, _l: Layer, _s: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-            None
-        }
-        fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-            None
-        }
     }
 
     pub static STAND_STILL: SearcherInfo = SearcherInfo {

@@ -46,9 +46,7 @@ use super::sweep::{axis_reach, sweep_path, SweepPattern};
 use super::{Planning, Searcher, SearcherInfo, World, SLICE_WORK};
 use crate::belief::BeliefState;
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
 use crate::stats::Sum;
-use crate::view::Layer;
 
 /// The spiral planner as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {
@@ -432,14 +430,6 @@ impl Searcher for Spiral {
 
     fn observe(&mut self, _torus: &Torus, _m: Move, pos: u32) {
         self.plan.observe(pos);
-    }
-
-    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-        None
-    }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
     }
 
     fn intent(&self) -> &[u32] {

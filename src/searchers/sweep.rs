@@ -18,9 +18,7 @@
 
 use super::{Searcher, SearcherInfo, World};
 use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
 use crate::named::named_enum;
-use crate::view::Layer;
 
 named_enum! {
     /// The sweep's pattern.
@@ -137,14 +135,6 @@ impl Searcher for Sweep {
 
     fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {
         self.next += 1;
-    }
-
-    fn counts<'a>(&'a self, _layer: Layer, _scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
-        None
-    }
-
-    fn decision(&self, _torus: &Torus, _pos: u32) -> Option<DecisionView> {
-        None
     }
 
     fn intent(&self) -> &[u32] {
