@@ -24,8 +24,9 @@
 //!    covered, or once a side would be longer than the torus plus `s`, when
 //!    its rings overlap. The cells it left with mass (at r_v = 1 the cell
 //!    diagonally outside each corner) are then visited one at a time,
-//!    the one of most mass ÷ (distance + 1) first, as the horizon rule's far
-//!    goal, each by a shortest path along the axis with more of the way.
+//!    the one of most mass ÷ (distance + 1) first (the horizon rule's far
+//!    goal, valued by the cell's own mass), each by a shortest path along
+//!    the axis with more of the way left.
 //! 4. **Choice:** each shape's exact `Σ R_t` up to the step cap is counted
 //!    as it is made, and the plan is the least (the first on a tie). A
 //!    shape is dropped as soon as its running sum reaches the best.
@@ -167,7 +168,7 @@ struct Job {
     /// The cell the plan starts from, and the centre.
     pos: u32,
     centre: u32,
-    /// Cells with mass the plan may take, and the most moves it may make.
+    /// Cells with planning mass, and the most moves the plan may make.
     cells: u32,
     cap: usize,
     /// The shape under way, and the one after the last to try.
