@@ -20,14 +20,22 @@
 //!    From there the spiral's sides are `s, s, 2s, 2s, 3s, …` cells long,
 //!    each turning the same way: the first side goes in any of the four
 //!    directions and the turns are left or right, 16 shapes in all.
-//! 3. **End:** the spiral stops once every cell with planning mass is
+//! 3. **Corners:** at r_v = 1 the cell one step past a corner and one step
+//!    out of the spiral is seen neither by the turn nor by the next ring,
+//!    which passes two cells away. A step out of the corner and back (two
+//!    moves) sees it. The spiral makes that detour when the cell's mass
+//!    times the moves left of the spiral (or of the step cap, if sooner)
+//!    exceeds twice the planning mass left: what seeing it now saves
+//!    against the two moves' delay to everything after. At N = 512,
+//!    σ = 64 this lowers the mean from 9 606.7 to 9 552.2.
+//! 4. **End:** the spiral stops once every cell with planning mass is
 //!    covered, or once a side would be longer than the torus plus `s`, when
 //!    its rings overlap. The cells it left with mass (at r_v = 1 the cell
 //!    diagonally outside each corner) are then visited one at a time,
 //!    the one of most mass ÷ (distance + 1) first (the horizon rule's far
 //!    goal, valued by the cell's own mass), each by a shortest path along
 //!    the axis with more of the way left.
-//! 4. **Choice:** each shape's exact `Σ R_t` up to the step cap is counted
+//! 5. **Choice:** each shape's exact `Σ R_t` up to the step cap is counted
 //!    as it is made, and the plan is the least (the first on a tie). A
 //!    shape is dropped as soon as its running sum reaches the best.
 //!
@@ -89,6 +97,12 @@ struct Walk {
     left: i64,
     /// No side may be longer than this.
     longest: i64,
+    /// Moves of the approach and the whole spiral.
+    total: i64,
+    /// True once the corner ending the side under way is decided; moves
+    /// left of a detour out of it and back.
+    decided: bool,
+    detour: u8,
 }
 
 /// Right, down, left, up: a quarter turn is one step along this list.
@@ -115,7 +129,38 @@ impl Walk {
             side: -1,
             left: 0,
             longest: torus.n() as i64 + s,
+            total: {
+                let approach = i64::from(dx.unsigned_abs() + dy.unsigned_abs());
+                // Sides s, s, 2s, 2s, … up to the longest.
+                let pairs = (torus.n() as i64 + s) / s;
+                approach + s * pairs * (pairs + 1)
+            },
+            decided: false,
+            detour: 0,
         }
+    }
+
+    /// The direction of side `k`.
+    fn dir(&self, k: i64) -> (i64, i64) {
+        DIRS[(self.first + self.turn * k).rem_euclid(4) as usize]
+    }
+
+    /// At the end of a side whose corner is not decided yet: the cell one
+    /// step on and one step out of the corner, which the next side's disc
+    /// does not reach at r_v = 1 and the next ring passes two cells away.
+    fn corner_hole(&self) -> Option<(i64, i64)> {
+        if self.side < 0 || self.left > 0 || self.decided {
+            return None;
+        }
+        let ((fx, fy), (lx, ly)) = (self.dir(self.side), self.dir(self.side + 1));
+        Some((self.x + fx - lx, self.y + fy - ly))
+    }
+
+    /// Decides the corner: with `detour` the walk steps out of it and back,
+    /// which sees the hole now instead of after the spiral.
+    fn decide(&mut self, detour: bool) {
+        self.decided = true;
+        self.detour = if detour { 2 } else { 0 };
     }
 
     /// The next cell, `None` once the spiral's sides outgrow the torus.
@@ -134,15 +179,24 @@ impl Walk {
             }
             return Some((self.x, self.y));
         }
+        if self.detour > 0 {
+            let (lx, ly) = self.dir(self.side + 1);
+            let out = if self.detour == 2 { -1 } else { 1 };
+            self.x += out * lx;
+            self.y += out * ly;
+            self.detour -= 1;
+            return Some((self.x, self.y));
+        }
         if self.left == 0 {
             self.side += 1;
+            self.decided = false;
             let len = self.s * (self.side / 2 + 1);
             if len > self.longest {
                 return None;
             }
             self.left = len;
         }
-        let (dx, dy) = DIRS[(self.first + self.turn * self.side).rem_euclid(4) as usize];
+        let (dx, dy) = self.dir(self.side);
         self.x += dx;
         self.y += dy;
         self.left -= 1;
@@ -171,6 +225,9 @@ struct Job {
     /// Cells with planning mass, and the most moves the plan may make.
     cells: u32,
     cap: usize,
+    /// Whether corners may take their detour (tests turn it off to
+    /// measure what it saves).
+    detours: bool,
     /// The shape under way, and the one after the last to try.
     shape: u32,
     until: u32,
@@ -246,6 +303,7 @@ impl Spiral {
             pos,
             centre,
             cap: self.step_cap as usize,
+            detours: true,
             shape: 0,
             until: SHAPES,
             walk: Walk::new(torus, pos, centre, 0, s),
@@ -337,6 +395,23 @@ impl Job {
         while work < SLICE_WORK {
             let ended = match self.phase {
                 _ if self.left_cells == 0 || self.cand.len() >= self.cap => true,
+                Phase::Spiral if self.walk.corner_hole().is_some() => {
+                    let (x, y) = self.walk.corner_hole().unwrap_or_default();
+                    let hole = torus.cell(x, y) as usize;
+                    // Seen now, the hole is seen about the rest of the
+                    // spiral (or of the step cap) sooner; the detour delays
+                    // everything after it by two moves.
+                    let end = self.walk.total.min(self.cap as i64);
+                    let late = (end - self.cand.len() as i64).max(0) as f64;
+                    let gain = if self.stamp[hole] == self.shape + 1 {
+                        0.0
+                    } else {
+                        self.mass[hole] * late
+                    };
+                    let worth = gain > 2.0 * self.left_mass.value();
+                    self.walk.decide(self.detours && self.walk.s > 1 && worth);
+                    false
+                }
                 Phase::Spiral => match self.walk.next() {
                     Some((x, y)) => {
                         work += disc;
@@ -471,9 +546,17 @@ mod tests {
     /// The plan from the start, made `slices` slices a call; and the
     /// number of calls it took.
     fn plan_of(cfg: &Config, slices: u32) -> (Vec<u32>, u32) {
+        plan_with(cfg, slices, true)
+    }
+
+    fn plan_with(cfg: &Config, slices: u32, detours: bool) -> (Vec<u32>, u32) {
         let (g, belief) = game(cfg);
         let mut sp = Spiral::new(&g.torus, cfg.step_cap);
         sp.begin(&g.torus, &g.sensor, &belief, g.start);
+        if let Some(job) = sp.job.as_deref_mut() {
+            job.detours = detours;
+            job.start_shape(&g.torus, &g.sensor, 0);
+        }
         let mut calls = 1;
         while !sp.work(&g.torus, &g.sensor, slices) {
             calls += 1;
@@ -573,6 +656,38 @@ mod tests {
     }
 
     #[test]
+    fn corner_detours_see_the_holes_sooner_and_lower_the_mean() {
+        // Without detours the holes wait for the end of the spiral: 723.05
+        // at N = 128, σ = 16, against 709.87 with them. A detour taken
+        // where it does not pay, or one that fails to see its hole, loses
+        // that.
+        let cfg = Config {
+            n: 128,
+            sigma: 16.0,
+            ..Config::default()
+        };
+        let (g, _) = game(&cfg);
+        let mean = |path: &[u32]| {
+            let mut full = vec![g.start];
+            full.extend_from_slice(path);
+            path_mean(&g.torus, &g.sensor, g.prior.mass(), &full).mean
+        };
+        let (with, _) = plan_with(&cfg, u32::MAX, true);
+        let (without, _) = plan_with(&cfg, u32::MAX, false);
+        // A detour is a step and its reverse (the walk between holes at
+        // the end makes a few too).
+        let back = |p: &[u32]| p.windows(3).filter(|w| w[0] == w[2]).count();
+        assert!(
+            back(&with) >= back(&without) + 4,
+            "{} against {}",
+            back(&with),
+            back(&without)
+        );
+        let (a, b) = (mean(&with), mean(&without));
+        assert!(a < b - 10.0, "with detours {a}, without {b}");
+    }
+
+    #[test]
     fn a_plan_made_in_slices_is_the_plan_made_at_once() {
         let cfg = Config {
             n: 128,
@@ -584,8 +699,8 @@ mod tests {
         let (sliced, calls) = plan_of(&cfg, 1);
         assert_eq!(sliced, whole);
         // A simulated move covers 5 cells at r_v = 1: about 4 000 moves a
-        // slice, so dozens of slices at this size.
-        assert!(calls > 20, "{calls} slices");
+        // slice, and a shape here is over 6 000 moves.
+        assert!(calls > 10, "{calls} slices");
     }
 
     #[test]
