@@ -725,7 +725,7 @@ mod tests {
     #[test]
     fn on_a_wide_prior_the_spiral_stays_near_the_bound() {
         // At N = 512, σ = 64 the horizon rule's path is 1.57 × the bound
-        // (README); the spiral's is 1.077. A spiral that runs its sides
+        // (README); the spiral's is 1.071. A spiral that runs its sides
         // twice as far apart, or that walks back to the centre, is above
         // 1.10.
         let cfg = Config {
