@@ -37,7 +37,7 @@
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
 use super::horizon::{decide, Completion, Lookahead};
-use super::plan::PlannedPath;
+use super::plan::{mass_left, PlannedPath};
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
@@ -172,12 +172,7 @@ impl Beam {
 
     /// Recalls the plan from `pos`, or starts making it.
     fn begin(&mut self, torus: &Torus, belief: &BeliefState, pos: u32) {
-        let mass: Vec<f64> = belief
-            .plan_mass()
-            .iter()
-            .zip(belief.searched())
-            .map(|(&m, &s)| if s == 0 { m } else { 0.0 })
-            .collect();
+        let mass = mass_left(belief);
         let key = PlanKey {
             n: torus.n(),
             rv: self.rv.to_bits(),

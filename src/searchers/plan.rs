@@ -23,6 +23,17 @@ pub fn mass_cells_left(belief: &BeliefState) -> u32 {
         .count() as u32
 }
 
+/// The planning mass of each cell, 0 where searched: what a plan made
+/// from here has left to find.
+pub fn mass_left(belief: &BeliefState) -> Vec<f64> {
+    belief
+        .plan_mass()
+        .iter()
+        .zip(belief.searched())
+        .map(|(&m, &s)| if s == 0 { m } else { 0.0 })
+        .collect()
+}
+
 /// The planning mass in the disc around `cell` that is not covered yet.
 #[inline]
 pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u32) -> f64 {

@@ -50,7 +50,7 @@
 //! and shows the progress ([`Searcher::planning`]). Where a slice ends
 //! depends only on work, so slicing changes nothing in the plan.
 
-use super::plan::{toward, PlannedPath};
+use super::plan::{mass_left, toward, PlannedPath};
 use super::sweep::{axis_reach, sweep_path, SweepPattern};
 use super::{Planning, Searcher, SearcherInfo, World, SLICE_WORK};
 use crate::belief::BeliefState;
@@ -276,12 +276,7 @@ impl Spiral {
 
     /// Starts a plan from `pos` for the planning mass left in `belief`.
     fn begin(&mut self, torus: &Torus, sensor: &Sensor, belief: &BeliefState, pos: u32) {
-        let mass: Vec<f64> = belief
-            .plan_mass()
-            .iter()
-            .zip(belief.searched())
-            .map(|(&m, &s)| if s == 0 { m } else { 0.0 })
-            .collect();
+        let mass = mass_left(belief);
         // The heaviest cell; ties to the nearest, then the lowest index.
         let mut centre = pos;
         let mut top = (0.0, u32::MAX);
