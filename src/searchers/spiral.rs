@@ -538,6 +538,13 @@ mod tests {
         (g, belief)
     }
 
+    /// The exact mean of `plan`, walked from the start of `g`.
+    fn mean_of(g: &crate::config::Game, plan: &[u32]) -> crate::bound::PathMean {
+        let mut full = vec![g.start];
+        full.extend_from_slice(plan);
+        path_mean(&g.torus, &g.sensor, g.prior.mass(), &full)
+    }
+
     /// The plan from the start, made `slices` slices a call; and the
     /// number of calls it took.
     fn plan_of(cfg: &Config, slices: u32) -> (Vec<u32>, u32) {
@@ -627,11 +634,7 @@ mod tests {
                 ..Config::default()
             };
             let (g, _) = game(&cfg);
-            let mean = |path: &[u32]| {
-                let mut full = vec![g.start];
-                full.extend_from_slice(path);
-                path_mean(&g.torus, &g.sensor, g.prior.mass(), &full)
-            };
+            let mean = |path: &[u32]| mean_of(&g, path);
             let (plan, _) = plan_of(&cfg, u32::MAX);
             let got = mean(&plan);
             assert_eq!(got.uncovered, 0.0);
@@ -662,11 +665,7 @@ mod tests {
             ..Config::default()
         };
         let (g, _) = game(&cfg);
-        let mean = |path: &[u32]| {
-            let mut full = vec![g.start];
-            full.extend_from_slice(path);
-            path_mean(&g.torus, &g.sensor, g.prior.mass(), &full).mean
-        };
+        let mean = |path: &[u32]| mean_of(&g, path).mean;
         let (with, _) = plan_with(&cfg, u32::MAX, true);
         let (without, _) = plan_with(&cfg, u32::MAX, false);
         // A detour is a step and its reverse (the walk between holes at
@@ -731,9 +730,7 @@ mod tests {
         };
         let (g, _) = game(&cfg);
         let (plan, _) = plan_of(&cfg, u32::MAX);
-        let mut full = vec![g.start];
-        full.extend_from_slice(&plan);
-        let got = path_mean(&g.torus, &g.sensor, g.prior.mass(), &full);
+        let got = mean_of(&g, &plan);
         let bound = lower_bound_of(&g.torus, &g.sensor, g.prior.mass(), g.start);
         assert_eq!(got.uncovered, 0.0);
         let ratio = got.mean / bound;
