@@ -833,7 +833,7 @@ test('the belief MCTS makes its plan in slices: on a large lattice the worker an
 test('the spiral planner makes its plan in slices on a large lattice, then follows it with unit moves', { timeout: 120_000 }, async () => {
   // At N = 1024 each of its 16 shapes is a walk of up to 350 000 moves:
   // about 0.2 s in all, made a slice at a time between frames.
-  await withApp('?searcher=spiral&n=1024&sigma=128&speed=max', async (page) => {
+  await withApp('?searcher=spiral&n=1024&sigma=128&speed=8', async (page) => {
     const seen = await page.evaluate(async () => {
       const out = [];
       const t0 = performance.now();
