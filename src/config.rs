@@ -753,7 +753,7 @@ pub static PARAMS: &[Param] = &[
             max: 1_000_000,
         },
         default: Value::Int(crate::mcts::DEFAULT_ESCAPE as u64),
-        help: "MCTS: after this many real moves in a row that search no new cell, walk straight to the cell with the most unsearched mass per step of distance, then search again; 0 never (the paper)",
+        help: "MCTS: after this many real moves in a row that search no new cell, walk straight to the cell with the most unsearched mass per step of distance, then search again (not while the belief MCTS follows its plan, which cannot trap it); 0 never (the paper)",
         applies: Applies::Searcher,
         aliases: &[],
         get: |c| Value::Int(c.escape as u64),

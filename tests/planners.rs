@@ -326,3 +326,54 @@ fn cost_per_move() {
         }
     }
 }
+
+/// A completion whose far goal is compared every move walks exactly the
+/// horizon searcher's path (the belief MCTS's first plan); one that takes
+/// the goal only when nothing within the horizon adds mass does not, and on
+/// a prior 8 times wider than at N = 40 it crawls through the tail.
+#[test]
+fn compared_completion_is_the_horizon_searchers_path() {
+    use torus_search::belief::{Belief, BeliefState};
+    use torus_search::bound::path_mean;
+    use torus_search::coverage::Coverage;
+    use torus_search::episode::Episode;
+    use torus_search::searchers::{completion, FarGoal, Lookahead};
+    let cfg = Config {
+        horizon: 5,
+        ..planner("horizon", 64, PriorKind::Gaussian, 8.0)
+    };
+    let game = cfg.game().unwrap();
+    let mut ep = Episode::blind_trial(&cfg, 0).unwrap();
+    let moves = exact_mean(&cfg).unwrap().moves;
+    for _ in 0..moves {
+        ep.step_move();
+    }
+    let mut belief = BeliefState::new(Belief::Posterior, game.prior.clone(), None);
+    belief.search_around(&game.sensor, game.start);
+    let mean = |far| {
+        let mut out = Vec::new();
+        completion(
+            &mut Lookahead::new(cfg.horizon),
+            &game.torus,
+            &game.sensor,
+            &belief,
+            &mut Coverage::new(game.torus.cells()),
+            game.start,
+            None,
+            100_000,
+            far,
+            &mut out,
+        );
+        out.insert(0, game.start);
+        let m = path_mean(&game.torus, &game.sensor, game.prior.mass(), &out).mean;
+        (out, m)
+    };
+    let (compared, by_compared) = mean(FarGoal::Compared);
+    assert_eq!(compared, ep.path(), "the horizon searcher's path");
+    let (_, by_stuck) = mean(FarGoal::Stuck);
+    println!("compared {by_compared:.4}, stuck {by_stuck:.4}");
+    assert!(
+        by_stuck > by_compared + 10.0,
+        "stuck {by_stuck} against compared {by_compared}"
+    );
+}

@@ -266,6 +266,12 @@ pub trait Stats {
     fn planning(&self) -> Option<Planning> {
         None
     }
+    /// True while the statistics follow a plan that completes the search
+    /// (the belief MCTS's): such a searcher cannot be trapped, so the
+    /// escape must not walk it off the plan.
+    fn holds_plan(&self) -> bool {
+        false
+    }
     /// Ends a decision with the statistics' own choice of move, or `None`
     /// to leave it to the final rule (`cap`: the rollout step cap).
     fn conclude(
@@ -352,7 +358,7 @@ impl<S: Stats> Searcher for Mcts<S> {
                 self.stalled = 0;
                 self.escape_to = None;
             }
-            if self.escape > 0 && self.stalled >= self.escape {
+            if self.escape > 0 && self.stalled >= self.escape && !self.stats.holds_plan() {
                 // Stuck in searched ground: walk to unsearched mass without
                 // deliberating (the target keeps mass until the belief
                 // changes, which ends the escape).

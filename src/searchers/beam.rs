@@ -36,7 +36,7 @@
 //! asked for, so a page's worker answers between them and shows the
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
-use super::horizon::{decide, Completion, Lookahead};
+use super::horizon::{decide, Completion, FarGoal, Lookahead};
 use super::plan::{mass_left, PlannedPath};
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
@@ -190,7 +190,13 @@ impl Beam {
             return;
         }
         drop(plans);
-        let run = Completion::new(belief, pos, self.last, self.step_cap as usize);
+        let run = Completion::new(
+            belief,
+            pos,
+            self.last,
+            self.step_cap as usize,
+            FarGoal::Stuck,
+        );
         self.job = Some(Box::new(Job {
             key,
             stage: Stage::Rule(run),
@@ -243,7 +249,7 @@ impl Beam {
                             _ => torus.move_to(job.sketch[n - 2], end),
                         };
                         let rest = cap.saturating_sub(head.len());
-                        let run = Completion::new(&after, end, last, rest);
+                        let run = Completion::new(&after, end, last, rest, FarGoal::Stuck);
                         job.beam.clone_from(&job.sketch);
                         job.stage = Stage::Tail(Box::new(after), run);
                     }

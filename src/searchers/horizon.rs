@@ -222,9 +222,23 @@ pub fn decide(
     }
 }
 
-/// Completes the search from `pos` by the horizon rule (its far goal only
-/// when nothing within the horizon adds mass, as rollout improvement's
-/// `horizon` base), writing the cells entered into `out`: until every
+/// When a horizon-rule completion heads for its far goal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FarGoal {
+    /// Whenever the goal's value beats the lookahead's rate, as the horizon
+    /// searcher plays: one scan of the cells a move. On a prior much wider
+    /// than the sensor the lookahead nearly always finds a little mass,
+    /// and without this comparison the path crawls through the tail (exact
+    /// means at h = 5: 693.47 against 945.64 at N = 128, σ = 16).
+    Compared,
+    /// Only when nothing within the horizon adds mass: no scan while the
+    /// lookahead finds mass, the cheap rule of the rollout bases, which
+    /// complete a search at every candidate move.
+    Stuck,
+}
+
+/// Completes the search from `pos` by the horizon rule, heading for its far
+/// goal as `far` says, writing the cells entered into `out`: until every
 /// unsearched cell with planning mass is covered, or `cap` moves. `cov`
 /// must hold no simulation, and is left holding none.
 #[allow(clippy::too_many_arguments)]
@@ -237,10 +251,11 @@ pub fn completion(
     pos: u32,
     last: Option<Move>,
     cap: usize,
+    far: FarGoal,
     out: &mut Vec<u32>,
 ) {
     out.clear();
-    let mut run = Completion::new(belief, pos, last, cap);
+    let mut run = Completion::new(belief, pos, last, cap, far);
     while !run.moves(look, torus, sensor, belief, cov, out, usize::MAX, u64::MAX) {}
 }
 
@@ -255,6 +270,7 @@ pub struct Completion {
     /// Moves made so far, and the most allowed.
     made: usize,
     cap: usize,
+    far: FarGoal,
 }
 
 /// Work units one slice of a decision or plan made in slices may spend (it
@@ -264,20 +280,30 @@ pub struct Completion {
 pub const SLICE_WORK: u64 = 20_000;
 
 /// What one horizon-rule move of `look` from a lookahead that found `gain`
-/// costs in [`SLICE_WORK`]'s units on a lattice of `cells` cells.
-pub fn move_work(look: &Lookahead, gain: f64, cells: usize) -> u64 {
-    2 * 3u64.pow(look.depth()) + if gain <= 0.0 { cells as u64 } else { 0 }
+/// costs in [`SLICE_WORK`]'s units on a lattice of `cells` cells, heading
+/// for the far goal as `far` says (a far-goal scan costs the cells).
+pub fn move_work(look: &Lookahead, gain: f64, cells: usize, far: FarGoal) -> u64 {
+    let scans = gain <= 0.0 || far == FarGoal::Compared;
+    2 * 3u64.pow(look.depth()) + if scans { cells as u64 } else { 0 }
 }
 
 impl Completion {
-    /// A completion from `pos` after `last`, of at most `cap` moves.
-    pub fn new(belief: &BeliefState, pos: u32, last: Option<Move>, cap: usize) -> Completion {
+    /// A completion from `pos` after `last`, of at most `cap` moves,
+    /// heading for the far goal as `far` says.
+    pub fn new(
+        belief: &BeliefState,
+        pos: u32,
+        last: Option<Move>,
+        cap: usize,
+        far: FarGoal,
+    ) -> Completion {
         Completion {
             left: super::plan::mass_cells_left(belief),
             p: pos,
             last,
             made: 0,
             cap,
+            far,
         }
     }
 
@@ -302,8 +328,11 @@ impl Completion {
             if self.left == 0 || self.made >= self.cap || work >= max_work {
                 break;
             }
-            let (m, found, _) = decide(look, torus, sensor, belief, cov, self.p, self.last, false);
-            work += move_work(look, found.gain, torus.cells());
+            let compared = self.far == FarGoal::Compared;
+            let (m, found, _) = decide(
+                look, torus, sensor, belief, cov, self.p, self.last, compared,
+            );
+            work += move_work(look, found.gain, torus.cells(), self.far);
             self.p = torus.step(self.p, m);
             self.left -= cov.cover_counted(sensor, belief, self.p).1;
             out.push(self.p);

@@ -27,7 +27,7 @@
 //! where a slice stopped: the page's worker answers between slices, and the
 //! moves do not depend on where the slices fall.
 
-use super::horizon::{decide, move_work, Lookahead, SLICE_WORK};
+use super::horizon::{decide, move_work, FarGoal, Lookahead, SLICE_WORK};
 use super::plan::{toward, CoverWalk, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
@@ -272,7 +272,7 @@ impl Improve {
                         run.last,
                         false,
                     );
-                    *work += move_work(&self.look, found.gain, torus.cells());
+                    *work += move_work(&self.look, found.gain, torus.cells(), FarGoal::Stuck);
                     m
                 }
             };
