@@ -414,7 +414,7 @@ impl FrameBuilder {
             ratio: (ep.status() == Status::Found)
                 .then(|| result.ratio())
                 .flatten(),
-            searched_mass: 1.0 - ep.belief().remaining(),
+            searched_mass: (1.0 - ep.belief().remaining()).clamp(0.0, 1.0),
             decision,
             path_from: from,
             path: Bytes(&self.path),

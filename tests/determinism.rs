@@ -225,7 +225,12 @@ fn cases() -> Vec<(&'static str, Config)> {
 /// plan became the horizon searcher's own path (its far goal compared every
 /// move) and the escape stopped walking a searcher that holds a plan off
 /// it (issue 11: at N = 128 the old plan and the escape cost 163 and 6
-/// steps); `pomcp cut`, with no plan, keeps its value.
+/// steps); `pomcp cut`, with no plan, kept its value. All three `pomcp`
+/// cases were re-pinned again when the belief's unsearched mass, which the
+/// belief MCTS normalises its returns by, became a compensated sum that is
+/// exactly 0 once no cell with mass is left (issue 11: the running
+/// difference from 1 left rounding dust of about 10⁻¹⁶, which late in a
+/// search outweighed the mass truly left and made it plan at every move).
 const PINNED: [u64; 20] = [
     0xffcde01788cd3854,
     0x2ffb758103ec3b6d,
@@ -242,10 +247,10 @@ const PINNED: [u64; 20] = [
     0xec1f7e9f227ae3a8,
     0x2f8ace8c33995f53,
     0x525ec88472ced1ec,
-    0x53cc4758a2f10861,
-    0x5a568ac79c3787d6,
+    0x7798266e28171dfc,
+    0xa56eaa66bd3ee177,
     0x6be7bf1f2b5dfc48,
-    0x0add7fecf3ca2c07,
+    0xb7e98bc3f324d2c8,
     0x3b1e5ef2507f25c4,
 ];
 
