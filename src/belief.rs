@@ -165,6 +165,11 @@ impl BeliefState {
         }
     }
 
+    /// The unsearched cells with positive planning mass.
+    pub fn cells_left(&self) -> u32 {
+        self.cells_left
+    }
+
     /// Changes whenever the searched set (and so the posterior) changes.
     pub fn generation(&self) -> u64 {
         self.generation
@@ -198,6 +203,10 @@ mod tests {
             .map(|c| g.prior.mass()[c])
             .sum();
         assert!(left > 0.0 && left < 1e-20, "the corner holds {left}");
+        let unsearched = (0..g.torus.cells())
+            .filter(|&c| b.searched()[c] == 0 && g.prior.mass()[c] > 0.0)
+            .count();
+        assert_eq!(b.cells_left() as usize, unsearched);
         let got = b.remaining();
         // Compensated, the error is of order cells × ε² ≈ 10⁻²⁹.
         assert!(
@@ -209,5 +218,6 @@ mod tests {
             b.search_around(&g.sensor, cell);
         }
         assert_eq!(b.remaining(), 0.0);
+        assert_eq!(b.cells_left(), 0);
     }
 }

@@ -298,7 +298,7 @@ impl Completion {
         far: FarGoal,
     ) -> Completion {
         Completion {
-            left: super::plan::mass_cells_left(belief),
+            left: belief.cells_left(),
             p: pos,
             last,
             made: 0,

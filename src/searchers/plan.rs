@@ -13,16 +13,6 @@ use crate::belief::BeliefState;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
 
-/// The cells with positive planning mass that are not searched yet.
-pub fn mass_cells_left(belief: &BeliefState) -> u32 {
-    belief
-        .plan_mass()
-        .iter()
-        .zip(belief.searched())
-        .filter(|&(&m, &s)| m > 0.0 && s == 0)
-        .count() as u32
-}
-
 /// The planning mass of each cell, 0 where searched: what a plan made
 /// from here has left to find.
 pub fn mass_left(belief: &BeliefState) -> Vec<f64> {

@@ -479,7 +479,7 @@ impl Job {
 impl Searcher for Spiral {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
         if !self.plan.on_plan(w.torus, w.pos) {
-            if self.job.is_none() && super::plan::mass_cells_left(w.belief) == 0 {
+            if self.job.is_none() && w.belief.cells_left() == 0 {
                 // Every cell with planning mass is searched: the target is
                 // where the planning prior put none, so sweep for it.
                 let cells = self.plan.start();
