@@ -685,7 +685,7 @@ impl Searcher for Beam {
             &mut self.cov,
             w.pos,
             self.last,
-            true,
+            FarGoal::Compared,
         );
         Some(m)
     }

@@ -195,9 +195,9 @@ impl Lookahead {
 
 /// One decision of the horizon rule from `pos` over `cov` (left as it
 /// was): the lookahead's move, or a step toward the fallback goal when
-/// that is better (`full_fallback`), or when nothing within the horizon
-/// adds mass (always). Returns the move, the lookahead's result and the
-/// goal it headed for, if any.
+/// nothing within the horizon adds mass, or, with `far` at
+/// [`FarGoal::Compared`], when the goal is better. Returns the move, the
+/// lookahead's result and the goal it headed for, if any.
 #[allow(clippy::too_many_arguments)]
 pub fn decide(
     look: &mut Lookahead,
@@ -207,10 +207,10 @@ pub fn decide(
     cov: &mut Coverage,
     pos: u32,
     last: Option<Move>,
-    full_fallback: bool,
+    far: FarGoal,
 ) -> (Move, Found, Option<u32>) {
     let found = look.search(torus, sensor, belief, cov, pos, last);
-    if found.gain > 0.0 && !full_fallback {
+    if found.gain > 0.0 && far == FarGoal::Stuck {
         return (found.first, found, None);
     }
     let rate = found.gain / look.depth() as f64;
@@ -328,9 +328,8 @@ impl Completion {
             if self.left == 0 || self.made >= self.cap || work >= max_work {
                 break;
             }
-            let compared = self.far == FarGoal::Compared;
             let (m, found, _) = decide(
-                look, torus, sensor, belief, cov, self.p, self.last, compared,
+                look, torus, sensor, belief, cov, self.p, self.last, self.far,
             );
             work += move_work(look, found.gain, torus.cells(), self.far);
             self.p = torus.step(self.p, m);
@@ -394,7 +393,7 @@ impl Searcher for Horizon {
             &mut self.cov,
             w.pos,
             self.last,
-            true,
+            FarGoal::Compared,
         );
         self.intent.clear();
         match goal {

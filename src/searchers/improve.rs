@@ -270,7 +270,7 @@ impl Improve {
                         &mut self.cov,
                         p,
                         run.last,
-                        false,
+                        FarGoal::Stuck,
                     );
                     *work += move_work(&self.look, found.gain, torus.cells(), FarGoal::Stuck);
                     m
