@@ -369,6 +369,7 @@ impl<S: Stats> Searcher for Mcts<S> {
                         w.belief,
                         &self.coverage,
                         w.pos,
+                        None,
                         &mut self.row,
                     )
                     .map(|(c, _)| c);

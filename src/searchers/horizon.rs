@@ -14,8 +14,10 @@
 //! **Fallback.** Beyond the horizon the planner is blind, so it compares
 //! the best sequence's rate `G/h` (`G`: the mass it covers) with the best
 //! far goal: the cell maximising (uncovered mass in its disc) ÷
-//! (distance + 1), an O(N²·disc) scan. When the goal's value is larger (in particular
-//! when nothing within reach adds mass) it steps straight toward the goal.
+//! (distance + 1), a scan of the lattice that skips the rows that cannot beat
+//! the rate (`plan::fallback_target`). When the goal's value is larger (in
+//! particular when nothing within reach adds mass) it steps straight toward
+//! the goal.
 //!
 //! The planner is deterministic: its path depends only on the belief, so
 //! `run --exact` evaluates it exactly.
@@ -213,12 +215,12 @@ pub fn decide(
     if found.gain > 0.0 && far == FarGoal::Stuck {
         return (found.first, found, None);
     }
-    let rate = found.gain / look.depth() as f64;
-    match fallback_target(torus, sensor, belief, cov, pos, &mut look.row) {
-        Some((goal, v)) if found.gain <= 0.0 || v > rate => {
-            (toward(torus, pos, goal, found.first), found, Some(goal))
-        }
-        _ => (found.first, found, None),
+    // Only a goal worth more than the lookahead's rate is taken, so the scan
+    // may skip every row that cannot beat it.
+    let beat = (found.gain > 0.0).then(|| found.gain / look.depth() as f64);
+    match fallback_target(torus, sensor, belief, cov, pos, beat, &mut look.row) {
+        Some((goal, _)) => (toward(torus, pos, goal, found.first), found, Some(goal)),
+        None => (found.first, found, None),
     }
 }
 
