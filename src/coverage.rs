@@ -74,6 +74,24 @@ impl Coverage {
         self.mark(belief, sensor.front(m, cell))
     }
 
+    /// What [`cover_step`](Coverage::cover_step) would return, without
+    /// marking anything: the same cells in the same order, summed alike (a
+    /// front holds no cell twice), so the same gain bit for bit. The
+    /// lookahead's last move needs no undo.
+    #[inline(always)]
+    pub fn step_gain(&self, sensor: &Sensor, belief: &BeliefState, m: Move, cell: u32) -> f64 {
+        let searched = belief.searched();
+        let mass = belief.plan_mass();
+        let mut gain = 0.0;
+        for c in sensor.front(m, cell) {
+            let i = c as usize;
+            if self.marked[i] == 0 && searched[i] == 0 {
+                gain += mass[i];
+            }
+        }
+        gain
+    }
+
     /// True when every cell of the disc around `cell` is covered.
     pub fn disc_covered(&self, sensor: &Sensor, belief: &BeliefState, cell: u32) -> bool {
         sensor.around(cell).all(|c| self.covered(belief, c))
@@ -212,6 +230,38 @@ impl Coverage {
                 .iter()
                 .fold(0.0, |b: f64, &l| if l > b { l } else { b });
         }
+    }
+
+    /// The largest planning mass of a cell neither searched nor simulated
+    /// within `half` columns and rows of `cell` (the whole lattice when that
+    /// box would wrap onto itself); 0 when there is none.
+    pub fn live_max_near(&self, belief: &BeliefState, n: u32, cell: u32, half: u32) -> f64 {
+        let (mass, searched) = (belief.plan_mass(), belief.searched());
+        let live = |i: usize| {
+            if self.marked[i] | searched[i] == 0 {
+                mass[i]
+            } else {
+                0.0
+            }
+        };
+        let mut best = 0.0f64;
+        if 2 * half + 1 >= n {
+            for i in 0..self.marked.len() {
+                let v = live(i);
+                best = if v > best { v } else { best };
+            }
+            return best;
+        }
+        let (n, half) = (n as i64, half as i64);
+        let (x, y) = ((cell as i64) % n, (cell as i64) / n);
+        for yy in y - half..=y + half {
+            let row = yy.rem_euclid(n) * n;
+            for xx in x - half..=x + half {
+                let v = live((row + xx.rem_euclid(n)) as usize);
+                best = if v > best { v } else { best };
+            }
+        }
+        best
     }
 
     /// A point to [`undo`](Coverage::undo) back to.

@@ -327,6 +327,21 @@ impl Sensor {
         torus.dist2(a, b) <= self.r2
     }
 
+    /// The most cells one step can newly cover (the largest front).
+    pub fn front_len(&self) -> usize {
+        self.fronts.iter().map(Vec::len).max().unwrap_or(0)
+    }
+
+    /// The largest coordinate offset within the radius (0 when the disc is
+    /// the cell alone).
+    pub fn reach(&self) -> u32 {
+        self.offsets
+            .iter()
+            .map(|&(dx, dy)| dx.unsigned_abs().max(dy.unsigned_abs()))
+            .max()
+            .unwrap_or(0)
+    }
+
     /// The cells within the radius of `cell`, each once.
     pub fn around(&self, cell: u32) -> impl Iterator<Item = u32> + '_ {
         disc(self.n, &self.offsets, cell)
