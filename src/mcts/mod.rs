@@ -20,7 +20,7 @@ use crate::lattice::Sensor;
 use crate::lattice::{Move, Torus};
 use crate::named::named_enum;
 use crate::rng::{self, Rng};
-use crate::searchers::plan::{fallback_target, toward};
+use crate::searchers::plan::{fallback_target, toward, FarScan};
 use crate::searchers::{Outcome, Planning, Policy, Searcher, SearcherInfo, Setup, Visit, World};
 use crate::view::Layer;
 use cells::CellTable;
@@ -317,7 +317,7 @@ pub struct Mcts<S: Stats> {
     /// An empty simulation, for the fallback target's gains.
     coverage: Coverage,
     /// Scratch for the escape's fallback scan.
-    row: Vec<f64>,
+    row: FarScan,
 }
 
 /// The default `escape`: stalled moves before an MCTS heads for unsearched
@@ -343,7 +343,7 @@ impl<S: Stats> Mcts<S> {
             escape: cfg.escape,
             escape_to: None,
             coverage: Coverage::new(setup.torus.cells()),
-            row: Vec::new(),
+            row: FarScan::default(),
         }
     }
 }

@@ -22,7 +22,7 @@
 //! The planner is deterministic: its path depends only on the belief, so
 //! `run --exact` evaluates it exactly.
 
-use super::plan::{fallback_target, reverse, toward};
+use super::plan::{fallback_target, reverse, toward, FarScan};
 use super::{MoveScores, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
 use crate::config::Config;
@@ -63,8 +63,10 @@ pub struct Lookahead {
     /// A bound on what one move may add, with room for rounding: the
     /// largest uncovered mass within reach times the largest front.
     step_bound: f64,
-    /// Scratch for the fallback scan.
-    row: Vec<f64>,
+    /// Simulated moves made since the work was last taken.
+    work: u64,
+    /// Scratch for the fallback scan, with its work.
+    scan: FarScan,
 }
 
 /// What a [`Lookahead`] found.
@@ -99,13 +101,20 @@ impl Lookahead {
             best: 0.0,
             best_gain: 0.0,
             step_bound: 0.0,
-            row: Vec::new(),
+            work: 0,
+            scan: FarScan::default(),
         }
     }
 
     /// The depth.
     pub fn depth(&self) -> u32 {
         self.h
+    }
+
+    /// The work done since it was last taken, in [`SLICE_WORK`]'s units: the
+    /// simulated moves, and the far-goal scans' work ([`FarScan`]).
+    pub fn take_work(&mut self) -> u64 {
+        std::mem::take(&mut self.work) + std::mem::take(&mut self.scan.work)
     }
 
     /// The best sequence's cells (after [`search`](Lookahead::search)).
@@ -139,6 +148,7 @@ impl Lookahead {
         self.step_bound = near * sensor.front_len() as f64 * (1.0 + 1e-9);
         for m in order(last, None) {
             self.best = f64::NEG_INFINITY;
+            self.work += 1;
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
             let g = if stood {
@@ -193,6 +203,7 @@ impl Lookahead {
         if k + 1 == self.h {
             // The last move: its gain is all that is needed, so nothing is
             // marked or undone (two thirds of the sequences' moves).
+            self.work += 3;
             for m in order(Some(last), Some(reverse(last))) {
                 let q = torus.step(pos, m);
                 let g = cov.step_gain(sensor, belief, m, q);
@@ -206,6 +217,7 @@ impl Lookahead {
             }
             return;
         }
+        self.work += 3;
         for m in order(Some(last), Some(reverse(last))) {
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
@@ -250,7 +262,7 @@ pub fn decide(
     // Only a goal worth more than the lookahead's rate is taken, so the scan
     // may skip every row that cannot beat it.
     let beat = (found.gain > 0.0).then(|| found.gain / look.depth() as f64);
-    match fallback_target(torus, sensor, belief, cov, pos, beat, &mut look.row) {
+    match fallback_target(torus, sensor, belief, cov, pos, beat, &mut look.scan) {
         Some((goal, _)) => (toward(torus, pos, goal, found.first), found, Some(goal)),
         None => (found.first, found, None),
     }
@@ -308,18 +320,11 @@ pub struct Completion {
 }
 
 /// Work units one slice of a decision or plan made in slices may spend (it
-/// ends after the simulated move that reaches them): a horizon move costs
-/// its lookahead's `2·3^h` simulated moves, and a far-goal scan the
-/// lattice's cells. About half a millisecond natively.
+/// ends after the move that reaches them): a horizon move costs the
+/// simulated moves its lookahead made (at most about `2·3^h`; fewer where
+/// its bound leaves sequences out) and the far-goal scan's work
+/// ([`FarScan`]), both as counted. About half a millisecond natively.
 pub const SLICE_WORK: u64 = 20_000;
-
-/// What one horizon-rule move of `look` from a lookahead that found `gain`
-/// costs in [`SLICE_WORK`]'s units on a lattice of `cells` cells, heading
-/// for the far goal as `far` says (a far-goal scan costs the cells).
-pub fn move_work(look: &Lookahead, gain: f64, cells: usize, far: FarGoal) -> u64 {
-    let scans = gain <= 0.0 || far == FarGoal::Compared;
-    2 * 3u64.pow(look.depth()) + if scans { cells as u64 } else { 0 }
-}
 
 impl Completion {
     /// A completion from `pos` after `last`, of at most `cap` moves,
@@ -362,10 +367,10 @@ impl Completion {
             if self.left == 0 || self.made >= self.cap || work >= max_work {
                 break;
             }
-            let (m, found, _) = decide(
+            let (m, _, _) = decide(
                 look, torus, sensor, belief, cov, self.p, self.last, self.far,
             );
-            work += move_work(look, found.gain, torus.cells(), self.far);
+            work += look.take_work();
             self.p = torus.step(self.p, m);
             self.left -= cov.cover_counted(sensor, belief, self.p).1;
             out.push(self.p);
@@ -554,6 +559,11 @@ mod tests {
                         let before = cov.len();
                         let found = look.search(&torus, &sensor, &belief, &mut cov, pos, last);
                         assert_eq!(cov.len(), before, "the simulation is left as it was");
+                        // Work is the simulated moves made: at most the
+                        // 4 + 12 + … + 4·3^(h−1) of the whole tree, then 0.
+                        let work = look.take_work();
+                        assert!((1..=2 * (3u64.pow(h) - 1)).contains(&work), "h {h}: {work}");
+                        assert_eq!(look.take_work(), 0);
                         let mut overall: Option<(Move, f64, f64, Vec<u32>)> = None;
                         for m in order(last, None) {
                             let q = torus.step(pos, m);

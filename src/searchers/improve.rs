@@ -27,7 +27,7 @@
 //! where a slice stopped: the page's worker answers between slices, and the
 //! moves do not depend on where the slices fall.
 
-use super::horizon::{decide, move_work, FarGoal, Lookahead, SLICE_WORK};
+use super::horizon::{decide, FarGoal, Lookahead, SLICE_WORK};
 use super::plan::{toward, CoverWalk, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
@@ -262,7 +262,7 @@ impl Improve {
                     }
                 }
                 Base::Horizon => {
-                    let (m, found, _) = decide(
+                    let (m, _, _) = decide(
                         &mut self.look,
                         torus,
                         sensor,
@@ -272,7 +272,7 @@ impl Improve {
                         run.last,
                         FarGoal::Stuck,
                     );
-                    *work += move_work(&self.look, found.gain, torus.cells(), FarGoal::Stuck);
+                    *work += self.look.take_work();
                     m
                 }
             };

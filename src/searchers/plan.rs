@@ -30,6 +30,26 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
     cov.gain(sensor, belief, cell)
 }
 
+/// Scratch for [`fallback_target`], and the work its scans have done in
+/// [`crate::searchers::SLICE_WORK`]'s units (a unit is about what a
+/// simulated lookahead move costs): one per [`ROW_CELLS_PER_UNIT`] cells of
+/// the rows scanned, and one per [`BOUND_CELLS_PER_UNIT`] cells of the
+/// lattice for the bounds.
+#[derive(Clone, Debug, Default)]
+pub struct FarScan {
+    buf: Vec<f64>,
+    /// Work units done since last taken.
+    pub work: u64,
+}
+
+/// Cells of the bounds' pass per work unit: a compare a cell, eight at a
+/// time (timed with `torus-search bench --moves`' plan slices).
+pub const BOUND_CELLS_PER_UNIT: u64 = 32;
+
+/// Cells of a scanned row per work unit: a row sums the disc offset by
+/// offset over whole rows, which vectorises.
+pub const ROW_CELLS_PER_UNIT: u64 = 8;
+
 /// The fallback target: the cell maximising (uncovered planning mass in its
 /// disc) ÷ (torus ℓ1 distance from `pos` + 1), with that value; `None` when
 /// no mass is left, or when `beat` is given and no cell's value exceeds
@@ -41,8 +61,8 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 /// or not above `beat`. The bound holds bit for bit, so the result is that
 /// of a full scan. One pass over the lattice for the bounds, then a row of
 /// gains at a time ([`Coverage::gains_row`]) for the rows not skipped:
-/// O(N² · disc) at worst. `row` is scratch the caller keeps, so the scan
-/// allocates nothing.
+/// O(N² · disc) at worst. `scan` is scratch the caller keeps, so the scan
+/// allocates nothing, and counts the work done in it.
 #[allow(clippy::too_many_arguments)]
 pub fn fallback_target(
     torus: &Torus,
@@ -51,11 +71,13 @@ pub fn fallback_target(
     cov: &Coverage,
     pos: u32,
     beat: Option<f64>,
-    row: &mut Vec<f64>,
+    scan: &mut FarScan,
 ) -> Option<(u32, f64)> {
     let n = torus.n();
     let nu = n as usize;
+    let row = &mut scan.buf;
     row.resize(4 * nu, 0.0);
+    scan.work += (torus.cells() as u64).div_ceil(BOUND_CELLS_PER_UNIT);
     let (px, py) = torus.xy(pos);
     // The row's gains; each column's distance from `pos` (small integers,
     // so sums of them as f64 are exact); each row's largest live mass; the
@@ -87,6 +109,7 @@ pub fn fallback_target(
             continue;
         }
         cov.gains_row(sensor, belief, y, gains);
+        scan.work += (n as u64).div_ceil(ROW_CELLS_PER_UNIT);
         for ((x, &g), &dx) in (0..n).zip(gains.iter()).zip(cols.iter()) {
             if g <= 0.0 {
                 continue;
@@ -324,7 +347,7 @@ mod tests {
                     let prior = TargetPrior::new(&torus, spec).unwrap();
                     let mut belief = BeliefState::new(Belief::Posterior, prior, None);
                     let mut cov = Coverage::new(cells);
-                    let mut row = Vec::new();
+                    let mut row = FarScan::default();
                     // Ever more searched and simulated, to the end of the mass.
                     for _ in 0..4 * cells {
                         let pos = rng::below(&mut r, cells as u32);
