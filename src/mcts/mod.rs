@@ -317,7 +317,7 @@ pub struct Mcts<S: Stats> {
     /// An empty simulation, for the fallback target's gains.
     coverage: Coverage,
     /// Scratch for the escape's fallback scan.
-    row: FarScan,
+    scan: FarScan,
 }
 
 /// The default `escape`: stalled moves before an MCTS heads for unsearched
@@ -343,7 +343,7 @@ impl<S: Stats> Mcts<S> {
             escape: cfg.escape,
             escape_to: None,
             coverage: Coverage::new(setup.torus.cells()),
-            row: FarScan::default(),
+            scan: FarScan::default(),
         }
     }
 }
@@ -370,7 +370,7 @@ impl<S: Stats> Searcher for Mcts<S> {
                         &self.coverage,
                         w.pos,
                         None,
-                        &mut self.row,
+                        &mut self.scan,
                     )
                     .map(|(c, _)| c);
                 }
