@@ -36,7 +36,7 @@
 //! asked for, so a page's worker answers between them and shows the
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
-use super::horizon::{decide, Completion, FarGoal, Lookahead};
+use super::horizon::{decide, Completion, FarGoal, Lookahead, SLICE_WORK};
 use super::plan::{mass_left, PlannedPath};
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
@@ -113,12 +113,6 @@ pub struct Beam {
     job: Option<Box<Job>>,
 }
 
-/// Moves of the horizon rule per slice of planning: 8 at N = 40, fewer on
-/// larger lattices (a move's fallback goal is a scan of the lattice), and
-/// one from N = 128 on.
-fn moves_per_slice(cells: usize) -> usize {
-    (12_800 / cells.max(1)).clamp(1, 8)
-}
 /// First moves of refinement per slice of planning.
 const ROWS_PER_SLICE: usize = 2;
 
@@ -224,8 +218,11 @@ impl Beam {
         for _ in 0..slices {
             match &mut job.stage {
                 Stage::Rule(run) => {
-                    let m = moves_per_slice(torus.cells());
-                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m, u64::MAX) {
+                    // Horizon moves until they have done a slice's work, as
+                    // counted: a move's cost varies a hundredfold with the
+                    // lattice and with how much its scan and lookahead skip.
+                    let (m, w) = (usize::MAX, SLICE_WORK);
+                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m, w) {
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
@@ -255,8 +252,8 @@ impl Beam {
                     }
                 }
                 Stage::Tail(after, run) => {
-                    let m = moves_per_slice(torus.cells());
-                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m, u64::MAX) {
+                    let (m, w) = (usize::MAX, SLICE_WORK);
+                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m, w) {
                         job.refiner.start(torus, sensor, mass, c, span, &job.rule);
                         job.stage = Stage::RefineRule;
                     }
@@ -776,23 +773,42 @@ mod tests {
     #[test]
     fn an_advance_call_makes_eight_slices_of_a_plan_whatever_k() {
         // At the slowest speed (k = 1) and when the worker asks for many
-        // microsecond moves (k = 1000) alike: PLAN_CALL_SLICES slices, here
-        // of 8 horizon moves each while the rule's path is made.
+        // microsecond moves (k = 1000) alike: PLAN_CALL_SLICES slices, as
+        // far as the same slices made one call each get the rule's path.
         let cfg = Config::default().with(&[
             ("n", "30"),
             ("prior", "uniform"),
             ("searcher", "beam"),
             ("beam_width", "4"),
             ("beam_depth", "10"),
+            ("horizon", "8"),
         ]);
-        let per = crate::episode::PLAN_CALL_SLICES * 8;
+        let per = crate::episode::PLAN_CALL_SLICES as usize;
+        // The rule's progress after each of the first slices, one a call.
+        let mut one = crate::episode::Episode::blind(&cfg).unwrap();
+        let after: Vec<u32> = (0..2 * per + 2)
+            .map(|_| {
+                assert!(!one.step_loops(1));
+                let p = one.planning().unwrap();
+                assert_eq!(p.stage, "horizon rule's path");
+                p.done
+            })
+            .collect();
+        assert!(
+            after.windows(2).all(|w| w[0] < w[1]),
+            "every slice moves: {after:?}"
+        );
         let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
         // A clock that stands still: only the slice count ends a call.
         ep.set_clock(|| 0.0);
-        for (k, done) in [(1, per), (1000, 2 * per)] {
+        for (k, slices) in [(1, per), (1000, 2 * per)] {
             assert_eq!(ep.advance(k), 0);
             let p = ep.planning().unwrap();
-            assert_eq!((p.stage, p.done), ("horizon rule's path", done), "k {k}");
+            assert_eq!(
+                (p.stage, p.done),
+                ("horizon rule's path", after[slices - 1]),
+                "k {k}"
+            );
         }
         // A clock that gains 5 ms at every reading: the call stops at the
         // first reading past PLAN_CALL_MS (8 ms), after two slices.
@@ -800,7 +816,7 @@ mod tests {
         ep.set_clock(|| 5.0 * TICKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) as f64);
         ep.advance(1000);
         let p = ep.planning().unwrap();
-        assert_eq!(p.done, 2 * per + 2 * 8);
+        assert_eq!(p.done, after[2 * per + 1]);
     }
 
     #[test]
