@@ -590,16 +590,7 @@ impl Stats for BeliefTree {
         }
         let run = self.making.as_mut().expect("a plan is being made");
         let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
-        if run.moves(
-            look,
-            torus,
-            sensor,
-            belief,
-            cov,
-            plan,
-            usize::MAX,
-            SLICE_WORK,
-        ) {
+        if run.moves(look, torus, sensor, belief, cov, plan, SLICE_WORK) {
             self.making = None;
             return true;
         }

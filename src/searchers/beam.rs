@@ -221,8 +221,8 @@ impl Beam {
                     // Horizon moves until they have done a slice's work, as
                     // counted: a move's cost varies a hundredfold with the
                     // lattice and with how much its scan and lookahead skip.
-                    let (m, w) = (usize::MAX, SLICE_WORK);
-                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, m, w) {
+                    let work = SLICE_WORK;
+                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, work) {
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
@@ -252,8 +252,8 @@ impl Beam {
                     }
                 }
                 Stage::Tail(after, run) => {
-                    let (m, w) = (usize::MAX, SLICE_WORK);
-                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, m, w) {
+                    let work = SLICE_WORK;
+                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, work) {
                         job.refiner.start(torus, sensor, mass, c, span, &job.rule);
                         job.stage = Stage::RefineRule;
                     }

@@ -200,10 +200,10 @@ impl Lookahead {
             return;
         }
         let w = (self.h - k) as f64;
+        self.work += 3;
         if k + 1 == self.h {
             // The last move: its gain is all that is needed, so nothing is
             // marked or undone (two thirds of the sequences' moves).
-            self.work += 3;
             for m in order(Some(last), Some(reverse(last))) {
                 let q = torus.step(pos, m);
                 let g = cov.step_gain(sensor, belief, m, q);
@@ -217,7 +217,6 @@ impl Lookahead {
             }
             return;
         }
-        self.work += 3;
         for m in order(Some(last), Some(reverse(last))) {
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
@@ -302,7 +301,7 @@ pub fn completion(
 ) {
     out.clear();
     let mut run = Completion::new(belief, pos, last, cap, far);
-    while !run.moves(look, torus, sensor, belief, cov, out, usize::MAX, u64::MAX) {}
+    while !run.moves(look, torus, sensor, belief, cov, out, u64::MAX) {}
 }
 
 /// A [`completion`] made in slices: [`Completion::moves`] adds a few moves
@@ -346,10 +345,10 @@ impl Completion {
         }
     }
 
-    /// Appends up to `k` more moves to `out`, with the arguments of
-    /// [`completion`], stopping early once they have cost `max_work` units
-    /// of [`SLICE_WORK`]'s kind. True when the completion is done (and
-    /// `cov` is cleared).
+    /// Appends moves to `out`, with the arguments of [`completion`], until
+    /// they have cost `max_work` units of [`SLICE_WORK`]'s kind (every move
+    /// costs at least one). True when the completion is done (and `cov` is
+    /// cleared).
     #[allow(clippy::too_many_arguments)]
     pub fn moves(
         &mut self,
@@ -359,14 +358,10 @@ impl Completion {
         belief: &BeliefState,
         cov: &mut Coverage,
         out: &mut Vec<u32>,
-        k: usize,
         max_work: u64,
     ) -> bool {
         let mut work = 0;
-        for _ in 0..k {
-            if self.left == 0 || self.made >= self.cap || work >= max_work {
-                break;
-            }
+        while self.left > 0 && self.made < self.cap && work < max_work {
             let (m, _, _) = decide(
                 look, torus, sensor, belief, cov, self.p, self.last, self.far,
             );

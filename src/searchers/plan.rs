@@ -347,13 +347,13 @@ mod tests {
                     let prior = TargetPrior::new(&torus, spec).unwrap();
                     let mut belief = BeliefState::new(Belief::Posterior, prior, None);
                     let mut cov = Coverage::new(cells);
-                    let mut row = FarScan::default();
+                    let mut scan = FarScan::default();
                     // Ever more searched and simulated, to the end of the mass.
                     for _ in 0..4 * cells {
                         let pos = rng::below(&mut r, cells as u32);
                         let want = full_scan(&torus, &sensor, &belief, &cov, pos);
                         let got =
-                            fallback_target(&torus, &sensor, &belief, &cov, pos, None, &mut row);
+                            fallback_target(&torus, &sensor, &belief, &cov, pos, None, &mut scan);
                         assert_eq!(got, want, "n {n}, {spec:?}, r_v {rv}, pos {pos}");
                         let beats = match want {
                             Some((_, v)) => [0.0, v * 0.5, v, v * 1.5],
@@ -367,7 +367,7 @@ mod tests {
                                 &cov,
                                 pos,
                                 Some(beat),
-                                &mut row,
+                                &mut scan,
                             );
                             assert_eq!(got, want.filter(|&(_, v)| v > beat), "beat {beat}");
                         }
