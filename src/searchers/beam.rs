@@ -36,7 +36,7 @@
 //! asked for, so a page's worker answers between them and shows the
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
-use super::horizon::{decide, Completion, FarGoal, Lookahead, SLICE_WORK};
+use super::horizon::{decide, Completion, FarGoal, Lookahead, Scored, SLICE_WORK};
 use super::plan::{mass_left, PlannedPath};
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
@@ -683,6 +683,7 @@ impl Searcher for Beam {
             w.pos,
             self.last,
             FarGoal::Compared,
+            Scored::Winner,
         );
         Some(m)
     }

@@ -69,12 +69,24 @@ pub struct Lookahead {
     scan: FarScan,
 }
 
+/// Which first moves a [`Lookahead::search`] scores exactly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scored {
+    /// Every first move, for the decision panel.
+    Every,
+    /// Only the chosen one (the others' scores are NaN): a first move's
+    /// sequences are then left out once they cannot beat an earlier first
+    /// move's best, which the moves, gain and sequence do not depend on.
+    Winner,
+}
+
 /// What a [`Lookahead`] found.
 #[derive(Clone, Copy, Debug)]
 pub struct Found {
     /// The best sequence's first move.
     pub first: Move,
-    /// Score of the best sequence starting with each move.
+    /// Score of the best sequence starting with each move (NaN for a move
+    /// [`Scored::Winner`] did not score).
     pub score: [f64; 4],
     /// Mass the best sequence covers (unweighted).
     pub gain: f64,
@@ -123,7 +135,9 @@ impl Lookahead {
     }
 
     /// Tries every sequence from `pos` over `cov` (left as it was); `last`
-    /// is the move that led to `pos`, preferred on ties.
+    /// is the move that led to `pos`, preferred on ties. `scored` says
+    /// which first moves get their exact score.
+    #[allow(clippy::too_many_arguments)]
     pub fn search(
         &mut self,
         torus: &Torus,
@@ -132,6 +146,7 @@ impl Lookahead {
         cov: &mut Coverage,
         pos: u32,
         last: Option<Move>,
+        scored: Scored,
     ) -> Found {
         let mut score = [f64::NAN; 4];
         let mut overall = f64::NEG_INFINITY;
@@ -147,7 +162,12 @@ impl Lookahead {
         let near = cov.live_max_near(belief, torus.n(), pos, self.h + sensor.reach());
         self.step_bound = near * sensor.front_len() as f64 * (1.0 + 1e-9);
         for m in order(last, None) {
-            self.best = f64::NEG_INFINITY;
+            // A later first move is taken only when strictly better, so
+            // without its own score only what beats the best so far counts.
+            self.best = match scored {
+                Scored::Every => f64::NEG_INFINITY,
+                Scored::Winner => overall,
+            };
             self.work += 1;
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
@@ -160,7 +180,9 @@ impl Lookahead {
             let w = self.h as f64;
             self.dfs(torus, sensor, belief, cov, q, m, 1, w * g, g);
             cov.undo(cp);
-            score[m as usize] = self.best;
+            if scored == Scored::Every {
+                score[m as usize] = self.best;
+            }
             if self.best > overall {
                 overall = self.best;
                 first = m;
@@ -168,6 +190,7 @@ impl Lookahead {
                 self.best_seq.copy_from_slice(&self.run_seq);
             }
         }
+        score[first as usize] = overall;
         Found { first, score, gain }
     }
 
@@ -242,7 +265,8 @@ impl Lookahead {
 /// was): the lookahead's move, or a step toward the fallback goal when
 /// nothing within the horizon adds mass, or, with `far` at
 /// [`FarGoal::Compared`], when the goal is better. Returns the move, the
-/// lookahead's result and the goal it headed for, if any.
+/// lookahead's result (scored as `scored` says) and the goal it headed for,
+/// if any.
 #[allow(clippy::too_many_arguments)]
 pub fn decide(
     look: &mut Lookahead,
@@ -253,8 +277,9 @@ pub fn decide(
     pos: u32,
     last: Option<Move>,
     far: FarGoal,
+    scored: Scored,
 ) -> (Move, Found, Option<u32>) {
-    let found = look.search(torus, sensor, belief, cov, pos, last);
+    let found = look.search(torus, sensor, belief, cov, pos, last, scored);
     if found.gain > 0.0 && far == FarGoal::Stuck {
         return (found.first, found, None);
     }
@@ -363,7 +388,15 @@ impl Completion {
         let mut work = 0;
         while self.left > 0 && self.made < self.cap && work < max_work {
             let (m, _, _) = decide(
-                look, torus, sensor, belief, cov, self.p, self.last, self.far,
+                look,
+                torus,
+                sensor,
+                belief,
+                cov,
+                self.p,
+                self.last,
+                self.far,
+                Scored::Winner,
             );
             work += look.take_work();
             self.p = torus.step(self.p, m);
@@ -428,6 +461,7 @@ impl Searcher for Horizon {
             w.pos,
             self.last,
             FarGoal::Compared,
+            Scored::Every,
         );
         self.intent.clear();
         match goal {
@@ -521,7 +555,7 @@ mod tests {
     /// Random searched sets and simulations, positions that have and have
     /// not been stood on, depths 1–5, sensor radii 0 to 2.5, and priors
     /// with ties (uniform, painted levels) and without; a bound one move
-    /// short (tried) fails it.
+    /// short (tried) fails it. Scoring only the winner finds the same.
     #[test]
     fn the_bounded_lookahead_finds_what_every_sequence_finds() {
         let mut r = rng::stream(5, 0);
@@ -552,13 +586,45 @@ mod tests {
                             (round % 4 != 0).then(|| Move::from_index(rng::below(&mut r, 4)));
                         let mut look = Lookahead::new(h);
                         let before = cov.len();
-                        let found = look.search(&torus, &sensor, &belief, &mut cov, pos, last);
+                        let found = look.search(
+                            &torus,
+                            &sensor,
+                            &belief,
+                            &mut cov,
+                            pos,
+                            last,
+                            Scored::Every,
+                        );
                         assert_eq!(cov.len(), before, "the simulation is left as it was");
                         // Work is the simulated moves made: at most the
                         // 4 + 12 + … + 4·3^(h−1) of the whole tree, then 0.
                         let work = look.take_work();
                         assert!((1..=2 * (3u64.pow(h) - 1)).contains(&work), "h {h}: {work}");
                         assert_eq!(look.take_work(), 0);
+                        // Scoring only the winner finds the same move, gain
+                        // and sequence, and leaves more out.
+                        let mut alone = Lookahead::new(h);
+                        let won = alone.search(
+                            &torus,
+                            &sensor,
+                            &belief,
+                            &mut cov,
+                            pos,
+                            last,
+                            Scored::Winner,
+                        );
+                        assert_eq!(cov.len(), before);
+                        assert_eq!((won.first, won.gain), (found.first, found.gain));
+                        assert_eq!(alone.best_seq(), look.best_seq());
+                        assert_eq!(
+                            won.score[won.first as usize],
+                            found.score[found.first as usize]
+                        );
+                        let unscored = Move::ALL
+                            .iter()
+                            .filter(|&&m| won.score[m as usize].is_nan());
+                        assert_eq!(unscored.count(), 3);
+                        assert!(alone.take_work() <= work);
                         let mut overall: Option<(Move, f64, f64, Vec<u32>)> = None;
                         for m in order(last, None) {
                             let q = torus.step(pos, m);

@@ -27,7 +27,7 @@
 //! where a slice stopped: the page's worker answers between slices, and the
 //! moves do not depend on where the slices fall.
 
-use super::horizon::{decide, FarGoal, Lookahead, SLICE_WORK};
+use super::horizon::{decide, FarGoal, Lookahead, Scored, SLICE_WORK};
 use super::plan::{toward, CoverWalk, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
@@ -271,6 +271,7 @@ impl Improve {
                         p,
                         run.last,
                         FarGoal::Stuck,
+                        Scored::Winner,
                     );
                     *work += self.look.take_work();
                     m

@@ -25,7 +25,8 @@ mod sweep;
 pub use beam::{Beam, DEFAULT_BEAM_DEPTH, DEFAULT_BEAM_WIDTH, MAX_BEAM};
 pub use greedy::Greedy;
 pub use horizon::{
-    completion, Completion, FarGoal, Horizon, Lookahead, DEFAULT_HORIZON, MAX_HORIZON, SLICE_WORK,
+    completion, Completion, FarGoal, Horizon, Lookahead, Scored, DEFAULT_HORIZON, MAX_HORIZON,
+    SLICE_WORK,
 };
 pub use improve::{base_mean, Base, Improve};
 pub use levy::{flight_end, Directions, FlightLengths, Levy};
