@@ -16,6 +16,17 @@ pub struct Coverage {
     stack: Vec<u32>,
 }
 
+/// A cell's planning mass when it is neither simulated (`marked`) nor
+/// searched for real, else 0: what is still to be found there.
+#[inline(always)]
+fn live(marked: u8, searched: u8, mass: f64) -> f64 {
+    if marked | searched == 0 {
+        mass
+    } else {
+        0.0
+    }
+}
+
 impl Coverage {
     /// Room for a lattice of `cells` cells, nothing simulated.
     pub fn new(cells: usize) -> Coverage {
@@ -210,20 +221,12 @@ impl Coverage {
             let whole = n / 8 * 8;
             for i in (0..whole).step_by(8) {
                 for (j, l) in lanes.iter_mut().enumerate() {
-                    let v = if marked[i + j] | searched[i + j] == 0 {
-                        mass[i + j]
-                    } else {
-                        0.0
-                    };
+                    let v = live(marked[i + j], searched[i + j], mass[i + j]);
                     *l = if v > *l { v } else { *l };
                 }
             }
             for i in whole..n {
-                let v = if marked[i] | searched[i] == 0 {
-                    mass[i]
-                } else {
-                    0.0
-                };
+                let v = live(marked[i], searched[i], mass[i]);
                 lanes[0] = if v > lanes[0] { v } else { lanes[0] };
             }
             *best = lanes
@@ -237,13 +240,7 @@ impl Coverage {
     /// box would wrap onto itself); 0 when there is none.
     pub fn live_max_near(&self, belief: &BeliefState, n: u32, cell: u32, half: u32) -> f64 {
         let (mass, searched) = (belief.plan_mass(), belief.searched());
-        let live = |i: usize| {
-            if self.marked[i] | searched[i] == 0 {
-                mass[i]
-            } else {
-                0.0
-            }
-        };
+        let live = |i: usize| live(self.marked[i], searched[i], mass[i]);
         let mut best = 0.0f64;
         if 2 * half + 1 >= n {
             for i in 0..self.marked.len() {

@@ -221,8 +221,7 @@ impl Beam {
                     // Horizon moves until they have done a slice's work, as
                     // counted: a move's cost varies a hundredfold with the
                     // lattice and with how much its scan and lookahead skip.
-                    let work = SLICE_WORK;
-                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, work) {
+                    if run.moves(look, torus, sensor, belief, cov, &mut job.rule, SLICE_WORK) {
                         let (w, d) = (self.width as usize, self.depth as usize);
                         let search = BeamSearch::new(torus, sensor, mass, pos, w, d);
                         job.stage = Stage::Search(Box::new(search));
@@ -252,8 +251,7 @@ impl Beam {
                     }
                 }
                 Stage::Tail(after, run) => {
-                    let work = SLICE_WORK;
-                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, work) {
+                    if run.moves(look, torus, sensor, after, cov, &mut job.beam, SLICE_WORK) {
                         job.refiner.start(torus, sensor, mass, c, span, &job.rule);
                         job.stage = Stage::RefineRule;
                     }
