@@ -115,7 +115,7 @@ use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
 use crate::named::named_enum;
 use crate::rng;
-use crate::searchers::{completion, Completion, FarGoal, Lookahead, Planning, SLICE_WORK};
+use crate::searchers::{Completion, FarGoal, Lookahead, Planning, SLICE_WORK};
 
 named_enum! {
     /// How the belief MCTS scales returns for UCT.
@@ -130,6 +130,11 @@ named_enum! {
 }
 
 const NONE: u32 = u32::MAX;
+
+/// The share of the posterior left at which a followed plan ends
+/// ([`follow_plan`]): each later move would add at most this to the
+/// expected time.
+const PLAN_END: f64 = 1e-12;
 
 /// The default `pomcp_depth`: rollout steps counted before the reference
 /// tail stands in. Chosen so that a decision of 100 loops at N = 40 stays
@@ -222,6 +227,21 @@ pub struct BeliefTree {
     making: Option<Completion>,
 }
 
+/// The horizon rule's completion from `root` that a new plan is made by:
+/// its far goal compared every move, as the horizon searcher plays, up to
+/// `cap` moves. It ends once a tenth of [`PLAN_END`] of the posterior is
+/// left. A [`follow_plan`] walk never asks for a plan cell past that: by
+/// each plan cell it passes it has covered at least what the plan had,
+/// and it stops at `PLAN_END` (the factor of ten is far more than the two
+/// running sums' rounding). So the plan walked is the one the whole
+/// completion would give, and the thin tail the horizon rule takes
+/// longest over (at N = 40, σ = 2.5, about 300 of its 1 100 moves) is
+/// never made.
+fn first_plan(belief: &BeliefState, root: u32, cap: u32) -> Completion {
+    Completion::new(belief, root, None, cap as usize, FarGoal::Compared)
+        .ending_at(belief.remaining() * PLAN_END / 10.0)
+}
+
 /// Follows `prefix` from `root` (each cell next to the one before), then
 /// the plan walk over `plan` until every unsearched cell with planning
 /// mass is covered or `cap` moves; writes the cells into `out` and their
@@ -249,7 +269,7 @@ fn follow_plan(
     let mut walk = PlanWalk::new();
     let (mut g, mut covered, mut r, mut cell) = (1.0, 0.0, 1.0, root);
     let mut i = 0;
-    while r > 1e-12 && (out.len() as u32) < cap {
+    while r > PLAN_END && (out.len() as u32) < cap {
         let next = match prefix.get(i) {
             Some(&c) => c,
             None => match walk.next_move(torus, sensor, belief, cov, plan, cell) {
@@ -452,19 +472,10 @@ impl BeliefTree {
         let (torus, sensor, belief) = (env.torus, env.sensor, env.belief);
         if !self.plan_holds(torus, root) {
             self.cov.clear();
-            let cap = env.rollout_cap as usize;
-            completion(
-                &mut self.look,
-                torus,
-                sensor,
-                belief,
-                &mut self.cov,
-                root,
-                None,
-                cap,
-                FarGoal::Compared,
-                &mut self.plan,
-            );
+            self.plan.clear();
+            let mut run = first_plan(belief, root, env.rollout_cap);
+            let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
+            while !run.moves(look, torus, sensor, belief, cov, plan, u64::MAX) {}
             self.plan_at = 0;
         }
         self.plan_cost = follow_plan(
@@ -580,13 +591,7 @@ impl Stats for BeliefTree {
             self.cov.clear();
             self.plan.clear();
             self.plan_at = 0;
-            self.making = Some(Completion::new(
-                belief,
-                root,
-                None,
-                cap as usize,
-                FarGoal::Compared,
-            ));
+            self.making = Some(first_plan(belief, root, cap));
         }
         let run = self.making.as_mut().expect("a plan is being made");
         let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
@@ -1030,6 +1035,100 @@ mod tests {
     }
 
     #[test]
+    fn a_plan_cut_where_the_walk_cannot_reach_walks_as_the_whole_completion_does() {
+        // The first plan ends once a tenth of PLAN_END of the posterior is
+        // left; followed from the root, with or without a tree line first,
+        // it must give the path, R_t and return of the whole completion.
+        // At σ = 2.5 the cut leaves out hundreds of moves.
+        use crate::searchers::completion;
+        for sigma in [2.5, 5.0] {
+            let h = Hand::new(cfg(sigma), 0);
+            let (torus, sensor, belief) = (&h.game.torus, &h.game.sensor, &h.belief);
+            let (root, cap, mass) = (h.game.start, h.c.rollout_cap, belief.remaining());
+            let mut look = Lookahead::new(h.c.pomcp_plan);
+            let mut cov = Coverage::new(torus.cells());
+            let mut whole = Vec::new();
+            let far = FarGoal::Compared;
+            completion(
+                &mut look,
+                torus,
+                sensor,
+                belief,
+                &mut cov,
+                root,
+                None,
+                cap as usize,
+                far,
+                &mut whole,
+            );
+            let make = |mut run: Completion| {
+                let (mut look, mut cov) =
+                    (Lookahead::new(h.c.pomcp_plan), Coverage::new(torus.cells()));
+                let mut out = Vec::new();
+                while !run.moves(
+                    &mut look,
+                    torus,
+                    sensor,
+                    belief,
+                    &mut cov,
+                    &mut out,
+                    u64::MAX,
+                ) {}
+                out
+            };
+            let cut_at = |end: f64| {
+                make(Completion::new(belief, root, None, cap as usize, far).ending_at(mass * end))
+            };
+            let cut = make(first_plan(belief, root, cap));
+            assert_eq!(cut[..], whole[..cut.len()]);
+            let walk = |plan: &[u32], prefix: &[u32]| {
+                let (mut cov, mut out, mut rs) =
+                    (Coverage::new(torus.cells()), Vec::new(), Vec::new());
+                let g = follow_plan(
+                    torus,
+                    sensor,
+                    belief,
+                    mass,
+                    cap,
+                    &mut cov,
+                    plan,
+                    root,
+                    prefix,
+                    &mut out,
+                    Some(&mut rs),
+                );
+                (
+                    g.to_bits(),
+                    out,
+                    rs.iter().map(|r| r.to_bits()).collect::<Vec<_>>(),
+                )
+            };
+            // Tree lines that leave the plan at once, and later.
+            let away = torus.step(root, Move::Left);
+            let lines = [
+                vec![],
+                vec![away],
+                vec![away, torus.step(away, Move::Up)],
+                whole[..30].to_vec(),
+            ];
+            for line in &lines {
+                let same = walk(&cut, line) == walk(&whole, line);
+                assert!(same, "σ = {sigma}, line {line:?}");
+            }
+            if sigma == 2.5 {
+                assert!(
+                    whole.len() > cut.len() + 200,
+                    "{} against {}",
+                    whole.len(),
+                    cut.len()
+                );
+                // A cut a thousand times earlier is seen: the walk runs out of plan.
+                assert!(walk(&cut_at(PLAN_END * 1e3), &[]) != walk(&whole, &[]));
+            }
+        }
+    }
+
+    #[test]
     fn the_plan_is_made_in_slices_before_the_first_loop_and_is_the_plan_made_at_once() {
         // N = 96, σ = 12: the plan is thousands of horizon moves. Each
         // think call makes a slice and returns no move; no loop runs (no
@@ -1042,18 +1141,17 @@ mod tests {
         let mut look = Lookahead::new(c.pomcp_plan);
         let mut cov = Coverage::new(h.game.torus.cells());
         let mut whole = Vec::new();
-        completion(
+        let mut run = first_plan(&h.belief, h.game.start, c.rollout_cap);
+        let (torus, sensor) = (&h.game.torus, &h.game.sensor);
+        while !run.moves(
             &mut look,
-            &h.game.torus,
-            &h.game.sensor,
+            torus,
+            sensor,
             &h.belief,
             &mut cov,
-            h.game.start,
-            None,
-            c.rollout_cap as usize,
-            FarGoal::Compared,
             &mut whole,
-        );
+            u64::MAX,
+        ) {}
         let mut ep = Episode::blind(&c).unwrap();
         let (mut slices, mut done) = (0, 0);
         while !ep.step_loops(1) && ep.counters().rollouts == 0 {

@@ -341,6 +341,11 @@ pub struct Completion {
     made: usize,
     cap: usize,
     far: FarGoal,
+    /// The planning mass not yet covered (a running difference), and the
+    /// mass left at which the completion may end early (−∞: it covers
+    /// every cell with mass).
+    mass_left: f64,
+    enough: f64,
 }
 
 /// Work units one slice of a decision or plan made in slices may spend (it
@@ -367,6 +372,19 @@ impl Completion {
             made: 0,
             cap,
             far,
+            mass_left: belief.remaining(),
+            enough: f64::NEG_INFINITY,
+        }
+    }
+
+    /// The same completion, ending once the planning mass it has not
+    /// covered is at most `mass` (as a running difference from the
+    /// belief's unsearched mass, so within its rounding): for a caller
+    /// that never follows a plan into a tail that thin.
+    pub fn ending_at(self, mass: f64) -> Completion {
+        Completion {
+            enough: mass,
+            ..self
         }
     }
 
@@ -386,7 +404,11 @@ impl Completion {
         max_work: u64,
     ) -> bool {
         let mut work = 0;
-        while self.left > 0 && self.made < self.cap && work < max_work {
+        while self.left > 0
+            && self.mass_left > self.enough
+            && self.made < self.cap
+            && work < max_work
+        {
             let (m, _, _) = decide(
                 look,
                 torus,
@@ -400,12 +422,14 @@ impl Completion {
             );
             work += look.take_work();
             self.p = torus.step(self.p, m);
-            self.left -= cov.cover_counted(sensor, belief, self.p).1;
+            let (gain, cells) = cov.cover_counted(sensor, belief, self.p);
+            self.left -= cells;
+            self.mass_left -= gain;
             out.push(self.p);
             self.made += 1;
             self.last = Some(m);
         }
-        let done = self.left == 0 || self.made >= self.cap;
+        let done = self.left == 0 || self.mass_left <= self.enough || self.made >= self.cap;
         if done {
             cov.clear();
         }
