@@ -602,7 +602,14 @@ mod tests {
         // PLAN_CALL_SLICES slices of it, whether it is asked for 1 loop or
         // 10 000 (advance) or for a move (step_move_bounded); once the plan
         // is made, the loops run and count as before.
-        let cfg = Config::default().with(&[("variant", "pomcp"), ("n", "96"), ("sigma", "12")]);
+        // (A configuration no other test plans: plans are kept for the
+        // process.)
+        let cfg = Config::default().with(&[
+            ("variant", "pomcp"),
+            ("n", "96"),
+            ("sigma", "12"),
+            ("rollout_cap", "9999"),
+        ]);
         let progress = |ep: &Episode| ep.planning().map(|p| p.done);
         let mut one = Episode::blind(&cfg).unwrap();
         one.set_clock(|| 0.0);
@@ -624,6 +631,16 @@ mod tests {
         assert!(!ep.step_move_bounded());
         assert!(progress(&ep).unwrap() > two, "step_move_bounded");
         assert_eq!(ep.counters().rollouts, 0);
+        // A clock that gains 5 ms a reading (the decision's budget reads it
+        // too) ends a call within two slices, by PLAN_CALL_MS. (Before any
+        // episode has made the whole plan: it is kept for the process.)
+        static TICKS: AtomicU64 = AtomicU64::new(0);
+        let mut timed = Episode::blind(&cfg).unwrap();
+        timed.set_clock(|| 5.0 * TICKS.fetch_add(1, Relaxed) as f64);
+        TICKS.store(0, Relaxed);
+        assert_eq!(timed.advance(10_000), 0);
+        let p = progress(&timed).unwrap();
+        assert!(p == per_slice[0] || p == per_slice[1], "{p}: {per_slice:?}");
         // The plan done, a call runs its k loops (the default L = 100 a move).
         while ep.planning().is_some() {
             ep.advance(1);
@@ -632,14 +649,5 @@ mod tests {
         ep.advance(250);
         assert_eq!(ep.counters().rollouts - before, 250);
         assert_eq!(ep.steps(), 2);
-        // A clock that gains 5 ms a reading (the decision's budget reads it
-        // too) ends a call within two slices, by PLAN_CALL_MS.
-        static TICKS: AtomicU64 = AtomicU64::new(0);
-        let mut timed = Episode::blind(&cfg).unwrap();
-        timed.set_clock(|| 5.0 * TICKS.fetch_add(1, Relaxed) as f64);
-        TICKS.store(0, Relaxed);
-        assert_eq!(timed.advance(10_000), 0);
-        let p = progress(&timed).unwrap();
-        assert!(p == per_slice[0] || p == per_slice[1], "{p}: {per_slice:?}");
     }
 }

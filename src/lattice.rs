@@ -316,6 +316,13 @@ impl Sensor {
         })
     }
 
+    /// The squared radius as detection compares it (a target at squared
+    /// distance d² is detected when d² ≤ this): two sensors with the same
+    /// value on one torus are the same sensor.
+    pub fn radius2(&self) -> u64 {
+        self.r2
+    }
+
     /// Displacements `(dx, dy)` within the radius (each cell once).
     pub fn offsets(&self) -> &[(i32, i32)] {
         &self.offsets

@@ -115,6 +115,7 @@ use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
 use crate::named::named_enum;
 use crate::rng;
+use crate::searchers::kept::{self, PlanKey};
 use crate::searchers::{Completion, FarGoal, Lookahead, Planning, SLICE_WORK};
 
 named_enum! {
@@ -223,8 +224,9 @@ pub struct BeliefTree {
     replay: bool,
     /// The move [`Stats::conclude`] chose, which keeps the plan valid.
     planned: Option<Move>,
-    /// A new plan being made in slices, before the decision's first loop.
-    making: Option<Completion>,
+    /// A new plan being made in slices, before the decision's first loop,
+    /// and the key it is kept under once made.
+    making: Option<(Completion, PlanKey)>,
 }
 
 /// The horizon rule's completion from `root` that a new plan is made by:
@@ -333,6 +335,14 @@ impl BeliefTree {
             planned: None,
             making: None,
         }
+    }
+
+    /// The key a first plan from `root` is kept under for the process
+    /// ([`kept`]): the plan is a function of it, so the trials of one
+    /// configuration make it once.
+    fn plan_key(&self, sensor: &Sensor, belief: &BeliefState, root: u32, cap: u32) -> PlanKey {
+        let params = [sensor.radius2(), self.plan_depth.into(), cap.into()];
+        PlanKey::new("pomcp", &params, belief, root, None)
     }
 
     /// True when the plan's next cell is a neighbour of `root` (a real move
@@ -473,9 +483,15 @@ impl BeliefTree {
         if !self.plan_holds(torus, root) {
             self.cov.clear();
             self.plan.clear();
-            let mut run = first_plan(belief, root, env.rollout_cap);
-            let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
-            while !run.moves(look, torus, sensor, belief, cov, plan, u64::MAX) {}
+            let key = self.plan_key(sensor, belief, root, env.rollout_cap);
+            if let Some(plan) = kept::recall(&key) {
+                self.plan = plan;
+            } else {
+                let mut run = first_plan(belief, root, env.rollout_cap);
+                let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
+                while !run.moves(look, torus, sensor, belief, cov, plan, u64::MAX) {}
+                kept::keep(key, &self.plan);
+            }
             self.plan_at = 0;
         }
         self.plan_cost = follow_plan(
@@ -591,12 +607,18 @@ impl Stats for BeliefTree {
             self.cov.clear();
             self.plan.clear();
             self.plan_at = 0;
-            self.making = Some(first_plan(belief, root, cap));
+            let key = self.plan_key(sensor, belief, root, cap);
+            if let Some(plan) = kept::recall(&key) {
+                self.plan = plan;
+                return true;
+            }
+            self.making = Some((first_plan(belief, root, cap), key));
         }
-        let run = self.making.as_mut().expect("a plan is being made");
+        let (run, _) = self.making.as_mut().expect("a plan is being made");
         let (look, cov, plan) = (&mut self.look, &mut self.cov, &mut self.plan);
         if run.moves(look, torus, sensor, belief, cov, plan, SLICE_WORK) {
-            self.making = None;
+            let (_, key) = self.making.take().expect("the plan just made");
+            kept::keep(key, &self.plan);
             return true;
         }
         false
@@ -607,7 +629,7 @@ impl Stats for BeliefTree {
     }
 
     fn planning(&self) -> Option<Planning> {
-        let run = self.making.as_ref()?;
+        let (run, _) = self.making.as_ref()?;
         Some(Planning::plan(
             "the horizon rule's plan, moves",
             run.made() as u32,
@@ -1129,14 +1151,57 @@ mod tests {
     }
 
     #[test]
+    fn a_later_trial_recalls_the_plan_an_earlier_one_made_and_plays_as_if_it_made_it() {
+        // Every trial of a configuration starts from the same belief and
+        // cell, so the first trial's plan is kept and the others recall it:
+        // their first decision makes no slice of plan. Their paths are
+        // those of trials that make the plan themselves.
+        let mut c = cfg(4.0);
+        c.n = 24;
+        c.rollout_cap = 7777; // no other test plans this configuration
+        let first_call = |i: u64| {
+            let mut ep = Episode::blind_trial(&c, i).unwrap();
+            let made = !ep.step_loops(1) && ep.planning().is_some();
+            (ep, made)
+        };
+        let path = |mut ep: Episode| {
+            while ep.steps() < 60 {
+                ep.step_move();
+            }
+            ep.path().to_vec()
+        };
+        kept::forget("pomcp");
+        let (first, made) = first_call(0);
+        assert!(made, "the first trial makes the plan");
+        let first = path(first);
+        let mut recalled = Vec::new();
+        for i in 1..4 {
+            let (ep, made) = first_call(i);
+            assert!(!made, "trial {i} recalls the plan");
+            assert!(ep.counters().rollouts > 0, "its first call runs loops");
+            recalled.push(path(ep));
+        }
+        for (i, want) in recalled.iter().enumerate() {
+            kept::forget("pomcp");
+            let (ep, made) = first_call(i as u64 + 1);
+            assert!(made);
+            assert_eq!(&path(ep), want, "trial {}", i + 1);
+        }
+        assert_ne!(recalled[0], first, "trials differ (their loops draw)");
+    }
+
+    #[test]
     fn the_plan_is_made_in_slices_before_the_first_loop_and_is_the_plan_made_at_once() {
         // N = 96, σ = 12: the plan is thousands of horizon moves. Each
         // think call makes a slice and returns no move; no loop runs (no
         // rollout counted) until the plan is made; between slices the
         // progress grows and the partial plan drawn is the start of the
         // plan `completion` makes in one go.
+        // (A configuration no other test plans: plans are kept for the
+        // process.)
         let mut c = cfg(12.0);
         c.n = 96;
+        c.rollout_cap = 9998;
         let h = Hand::new(c.clone(), 0);
         let mut look = Lookahead::new(c.pomcp_plan);
         let mut cov = Coverage::new(h.game.torus.cells());

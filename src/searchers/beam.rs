@@ -28,7 +28,7 @@
 //!
 //! A plan depends only on the planning mass left, the cell, the last move
 //! and the parameters. So the last few plans are kept for the process
-//! ([`PLANS`]), and trials of one configuration make the plan once.
+//! ([`super::kept`]), and trials of one configuration make the plan once.
 //!
 //! # Slices
 //! The plan is made in slices of about a millisecond (a few horizon moves,
@@ -37,7 +37,8 @@
 //! progress ([`Searcher::planning`]). Slicing changes nothing in the plan.
 
 use super::horizon::{decide, Completion, FarGoal, Lookahead, Scored, SLICE_WORK};
-use super::plan::{mass_left, PlannedPath};
+use super::kept::{self, PlanKey};
+use super::plan::PlannedPath;
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
@@ -46,7 +47,6 @@ use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
 use crate::rng::splitmix64;
 use std::collections::HashSet;
-use std::sync::Mutex;
 
 /// The default beam width.
 pub const DEFAULT_BEAM_WIDTH: u32 = 100;
@@ -59,8 +59,6 @@ pub const MAX_BEAM: u32 = 400;
 pub const PER_CELL: u8 = 2;
 /// Refinement tries changes spanning fewer moves than this.
 const WINDOW: u32 = 40;
-/// Plans kept for the process.
-const KEPT: usize = 8;
 
 /// The beam planner as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {
@@ -72,30 +70,6 @@ pub static INFO: SearcherInfo = SearcherInfo {
     uses: |_, key| matches!(key, "beam_width" | "beam_depth" | "horizon"),
     build: |s| Box::new(Beam::new(s.cfg, s.torus)),
 };
-
-/// What a plan is a function of.
-#[derive(Clone, Debug, PartialEq)]
-struct PlanKey {
-    n: u32,
-    rv: u64,
-    width: u32,
-    depth: u32,
-    horizon: u32,
-    step_cap: u32,
-    pos: u32,
-    last: Option<Move>,
-    /// The planning mass of each cell, 0 where searched.
-    mass: Vec<f64>,
-}
-
-/// The last plans made in this process, newest last.
-static PLANS: Mutex<Vec<(PlanKey, Vec<u32>)>> = Mutex::new(Vec::new());
-
-/// Forgets the plans kept, so a test makes its plan afresh.
-#[cfg(test)]
-fn forget_plans() {
-    PLANS.lock().unwrap_or_else(|e| e.into_inner()).clear();
-}
 
 /// The beam planner.
 pub struct Beam {
@@ -165,25 +139,19 @@ impl Beam {
     }
 
     /// Recalls the plan from `pos`, or starts making it.
-    fn begin(&mut self, torus: &Torus, belief: &BeliefState, pos: u32) {
-        let mass = mass_left(belief);
-        let key = PlanKey {
-            n: torus.n(),
-            rv: self.rv.to_bits(),
-            width: self.width,
-            depth: self.depth,
-            horizon: self.horizon,
-            step_cap: self.step_cap,
-            pos,
-            last: self.last,
-            mass,
-        };
-        let plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some((_, plan)) = plans.iter().find(|(k, _)| *k == key) {
-            self.plan.start().clone_from(plan);
+    fn begin(&mut self, belief: &BeliefState, pos: u32) {
+        let params = [
+            self.rv.to_bits(),
+            self.width.into(),
+            self.depth.into(),
+            self.horizon.into(),
+            self.step_cap.into(),
+        ];
+        let key = PlanKey::new("beam", &params, belief, pos, self.last);
+        if let Some(plan) = kept::recall(&key) {
+            *self.plan.start() = plan;
             return;
         }
-        drop(plans);
         let run = Completion::new(
             belief,
             pos,
@@ -210,8 +178,8 @@ impl Beam {
         };
         let cap = self.step_cap as usize;
         let span = 2 * self.depth as usize;
-        let pos = job.key.pos;
-        let (mass, c) = (&job.key.mass[..], self.step_cap);
+        let pos = job.key.pos();
+        let (mass, c) = (job.key.mass(), self.step_cap);
         let look = &mut self.look;
         let cov = &mut self.cov;
         // One slice of the stage under way per turn.
@@ -275,13 +243,8 @@ impl Beam {
                         };
                         let cells = self.plan.start();
                         cells.extend_from_slice(&plan[1..]);
-                        let cells = cells.clone();
                         let job = self.job.take().expect("the job under way");
-                        let mut plans = PLANS.lock().unwrap_or_else(|e| e.into_inner());
-                        if plans.len() == KEPT {
-                            plans.remove(0);
-                        }
-                        plans.push((job.key, cells));
+                        kept::keep(job.key, cells);
                         return true;
                     }
                 }
@@ -658,7 +621,7 @@ impl Searcher for Beam {
         let done = self.plan.walked();
         if !self.plan.on_plan(w.torus, w.pos) && !done {
             if self.job.is_none() {
-                self.begin(w.torus, w.belief, w.pos);
+                self.begin(w.belief, w.pos);
             }
             // A slice of planning per loop asked for: the decision is
             // under way until the plan is made.
@@ -761,7 +724,7 @@ mod tests {
         while sliced.steps() < 250 {
             sliced.step_move();
         }
-        forget_plans();
+        kept::forget("beam");
         let mut whole = crate::episode::Episode::blind(&cfg).unwrap();
         while whole.steps() < 250 {
             whole.step_move();

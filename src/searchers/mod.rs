@@ -13,6 +13,7 @@ mod beam;
 mod greedy;
 mod horizon;
 mod improve;
+pub(crate) mod kept;
 mod levy;
 mod nsarw;
 pub mod plan;
