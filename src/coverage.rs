@@ -206,33 +206,42 @@ impl Coverage {
             "{n} rows for {} cells",
             self.marked.len()
         );
-        let (mass, searched) = (belief.plan_mass(), belief.searched());
         for (y, best) in out.iter_mut().enumerate() {
-            let cells = y * n..(y + 1) * n;
-            let (mass, marked, searched) = (
-                &mass[cells.clone()],
-                &self.marked[cells.clone()],
-                &searched[cells],
-            );
-            // Eight running maxima, so a compare need not wait for the one
-            // before it (a max is exact in any order): a third faster than
-            // one at N = 256.
-            let mut lanes = [0.0f64; 8];
-            let whole = n / 8 * 8;
-            for i in (0..whole).step_by(8) {
-                for (j, l) in lanes.iter_mut().enumerate() {
-                    let v = live(marked[i + j], searched[i + j], mass[i + j]);
-                    *l = if v > *l { v } else { *l };
-                }
-            }
-            for i in whole..n {
-                let v = live(marked[i], searched[i], mass[i]);
-                lanes[0] = if v > lanes[0] { v } else { lanes[0] };
-            }
-            *best = lanes
-                .iter()
-                .fold(0.0, |b: f64, &l| if l > b { l } else { b });
+            *best = self.live_max_row(belief, n, y);
         }
+    }
+
+    /// [`live_max_rows`](Coverage::live_max_rows) for row `y` of an
+    /// `n`-wide lattice alone.
+    ///
+    /// # Panics
+    /// When row `y` is off the lattice.
+    #[inline]
+    pub fn live_max_row(&self, belief: &BeliefState, n: usize, y: usize) -> f64 {
+        let cells = y * n..(y + 1) * n;
+        let (mass, marked, searched) = (
+            &belief.plan_mass()[cells.clone()],
+            &self.marked[cells.clone()],
+            &belief.searched()[cells],
+        );
+        // Eight running maxima, so a compare need not wait for the one
+        // before it (a max is exact in any order): a third faster than
+        // one at N = 256.
+        let mut lanes = [0.0f64; 8];
+        let whole = n / 8 * 8;
+        for i in (0..whole).step_by(8) {
+            for (j, l) in lanes.iter_mut().enumerate() {
+                let v = live(marked[i + j], searched[i + j], mass[i + j]);
+                *l = if v > *l { v } else { *l };
+            }
+        }
+        for i in whole..n {
+            let v = live(marked[i], searched[i], mass[i]);
+            lanes[0] = if v > lanes[0] { v } else { lanes[0] };
+        }
+        lanes
+            .iter()
+            .fold(0.0, |b: f64, &l| if l > b { l } else { b })
     }
 
     /// The largest planning mass of a cell neither searched nor simulated

@@ -28,6 +28,7 @@ use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The largest horizon: `2·3^h` simulated moves per decision stays under
 /// 10⁵ (about 1 ms natively at r_v = 1).
@@ -346,7 +347,14 @@ pub struct Completion {
     /// every cell with mass).
     mass_left: f64,
     enough: f64,
+    /// This completion's number in the process: its far-goal scans, move
+    /// after move, tell the scan that only cells were covered since the
+    /// last ([`FarScan::shrinking_since`]).
+    run: u64,
 }
+
+/// Completions made so far in the process.
+static RUNS: AtomicU64 = AtomicU64::new(0);
 
 /// Work units one slice of a decision or plan made in slices may spend (it
 /// ends after the move that reaches them): a horizon move costs the
@@ -374,6 +382,7 @@ impl Completion {
             far,
             mass_left: belief.remaining(),
             enough: f64::NEG_INFINITY,
+            run: RUNS.fetch_add(1, Relaxed),
         }
     }
 
@@ -409,6 +418,7 @@ impl Completion {
             && self.made < self.cap
             && work < max_work
         {
+            look.scan.shrinking_since(self.run);
             let (m, _, _) = decide(
                 look,
                 torus,
@@ -420,6 +430,7 @@ impl Completion {
                 self.far,
                 Scored::Winner,
             );
+            look.scan.forget_run();
             work += look.take_work();
             self.p = torus.step(self.p, m);
             let (gain, cells) = cov.cover_counted(sensor, belief, self.p);
