@@ -353,7 +353,8 @@ pub struct Completion {
     run: u64,
 }
 
-/// Completions made so far in the process.
+/// Runs of far-goal scans (completions, horizon searchers) begun so far
+/// in the process.
 static RUNS: AtomicU64 = AtomicU64::new(0);
 
 /// Work units one slice of a decision or plan made in slices may spend (it
@@ -460,6 +461,10 @@ pub struct Horizon {
     last: Option<Move>,
     intent: Vec<u32>,
     scores: Option<MoveScores>,
+    /// Its number among the process's runs of far-goal scans: a searcher
+    /// plays one episode, whose searched cells only grow, so each scan
+    /// may keep what the one before read ([`FarScan::shrinking_since`]).
+    run: u64,
 }
 
 impl Horizon {
@@ -471,6 +476,7 @@ impl Horizon {
             last: None,
             intent: Vec::with_capacity(2 * torus.n() as usize + cfg.horizon as usize),
             scores: None,
+            run: RUNS.fetch_add(1, Relaxed),
         }
     }
 }
@@ -487,6 +493,7 @@ pub(crate) fn walk_to(torus: &Torus, pos: u32, goal: u32, out: &mut Vec<u32>) {
 impl Searcher for Horizon {
     fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
         self.cov.clear();
+        self.look.scan.shrinking_since(self.run);
         let (m, found, goal) = decide(
             &mut self.look,
             w.torus,

@@ -34,7 +34,7 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 /// [`crate::searchers::SLICE_WORK`]'s units (a unit is about what a
 /// simulated lookahead move costs): one per [`ROW_CELLS_PER_UNIT`] cells of
 /// the rows scanned, and one per [`BOUND_CELLS_PER_UNIT`] cells of the
-/// lattice for the bounds.
+/// rows whose maxima it reads and terms of the rows' bounds.
 ///
 /// A caller that scans again and again while the uncovered mass only
 /// shrinks (a horizon-rule completion, move after move) may say so with
@@ -128,7 +128,20 @@ pub fn fallback_target(
     for (x, d) in (0..n).zip(cols.iter_mut()) {
         *d = torus.axis_dist(px, x) as f64;
     }
-    let wrap = |v: i64| v.rem_euclid(n as i64) as usize;
+    // Rows a disc or the search's order reaches lie within n of the
+    // lattice: one correction wraps them, without a division (a scan
+    // wraps every row's disc rows, and divisions were most of its cost
+    // once it kept its rows' maxima).
+    let wrap = |v: i64| {
+        let n = n as i64;
+        (if v < 0 {
+            v + n
+        } else if v >= n {
+            v - n
+        } else {
+            v
+        }) as usize
+    };
     // Summed in the sensor's order from +0.0, as `gains_row` sums: with
     // every row read at this scan, bit for bit the bound of a scan from
     // scratch; with older reads, no smaller (rounding is monotone).
@@ -139,6 +152,10 @@ pub fn fallback_target(
         }
         s
     };
+    // Every row's bound is summed (a compare's worth a term, as the pass
+    // over the lattice counts).
+    let terms = n as u64 * sensor.offsets().len() as u64;
+    scan.work += terms.div_ceil(BOUND_CELLS_PER_UNIT);
     let mut best: Option<(u32, f64)> = None;
     let skip = |top: f64, best: Option<(u32, f64)>| {
         best.is_some_and(|(_, b)| top < b) || beat.is_some_and(|f| top <= f)
