@@ -645,6 +645,7 @@ impl Searcher for Beam {
             self.last,
             FarGoal::Compared,
             Scored::Winner,
+            None,
         );
         Some(m)
     }

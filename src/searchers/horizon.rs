@@ -28,7 +28,6 @@ use crate::belief::BeliefState;
 use crate::config::Config;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
-use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The largest horizon: `2·3^h` simulated moves per decision stays under
 /// 10⁵ (about 1 ms natively at r_v = 1).
@@ -267,7 +266,8 @@ impl Lookahead {
 /// nothing within the horizon adds mass, or, with `far` at
 /// [`FarGoal::Compared`], when the goal is better. Returns the move, the
 /// lookahead's result (scored as `scored` says) and the goal it headed for,
-/// if any.
+/// if any. `run`, if given, says that the far-goal scan continues that run
+/// ([`FarScan::shrinking_since`]).
 #[allow(clippy::too_many_arguments)]
 pub fn decide(
     look: &mut Lookahead,
@@ -279,10 +279,14 @@ pub fn decide(
     last: Option<Move>,
     far: FarGoal,
     scored: Scored,
+    run: Option<u64>,
 ) -> (Move, Found, Option<u32>) {
     let found = look.search(torus, sensor, belief, cov, pos, last, scored);
     if found.gain > 0.0 && far == FarGoal::Stuck {
         return (found.first, found, None);
+    }
+    if let Some(run) = run {
+        look.scan.shrinking_since(run);
     }
     // Only a goal worth more than the lookahead's rate is taken, so the scan
     // may skip every row that cannot beat it.
@@ -353,10 +357,6 @@ pub struct Completion {
     run: u64,
 }
 
-/// Runs of far-goal scans (completions, horizon searchers) begun so far
-/// in the process.
-static RUNS: AtomicU64 = AtomicU64::new(0);
-
 /// Work units one slice of a decision or plan made in slices may spend (it
 /// ends after the move that reaches them): a horizon move costs the
 /// simulated moves its lookahead made (at most about `2·3^h`; fewer where
@@ -383,7 +383,7 @@ impl Completion {
             far,
             mass_left: belief.remaining(),
             enough: f64::NEG_INFINITY,
-            run: RUNS.fetch_add(1, Relaxed),
+            run: FarScan::new_run(),
         }
     }
 
@@ -419,7 +419,6 @@ impl Completion {
             && self.made < self.cap
             && work < max_work
         {
-            look.scan.shrinking_since(self.run);
             let (m, _, _) = decide(
                 look,
                 torus,
@@ -430,8 +429,8 @@ impl Completion {
                 self.last,
                 self.far,
                 Scored::Winner,
+                Some(self.run),
             );
-            look.scan.forget_run();
             work += look.take_work();
             self.p = torus.step(self.p, m);
             let (gain, cells) = cov.cover_counted(sensor, belief, self.p);
@@ -476,7 +475,7 @@ impl Horizon {
             last: None,
             intent: Vec::with_capacity(2 * torus.n() as usize + cfg.horizon as usize),
             scores: None,
-            run: RUNS.fetch_add(1, Relaxed),
+            run: FarScan::new_run(),
         }
     }
 }
@@ -493,7 +492,6 @@ pub(crate) fn walk_to(torus: &Torus, pos: u32, goal: u32, out: &mut Vec<u32>) {
 impl Searcher for Horizon {
     fn think(&mut self, w: &mut World<'_>, _max_loops: u32) -> Option<Move> {
         self.cov.clear();
-        self.look.scan.shrinking_since(self.run);
         let (m, found, goal) = decide(
             &mut self.look,
             w.torus,
@@ -504,6 +502,7 @@ impl Searcher for Horizon {
             self.last,
             FarGoal::Compared,
             Scored::Every,
+            Some(self.run),
         );
         self.intent.clear();
         match goal {

@@ -28,7 +28,7 @@
 //! moves do not depend on where the slices fall.
 
 use super::horizon::{decide, FarGoal, Lookahead, Scored, SLICE_WORK};
-use super::plan::{toward, CoverWalk, Sum};
+use super::plan::{toward, CoverWalk, FarScan, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
@@ -195,6 +195,7 @@ impl Improve {
             walk: CoverWalk::new(self.last),
             waypoint: self.sweep_from,
             limit,
+            scans: FarScan::new_run(),
         };
         if let Some(m) = first {
             let q = torus.step(pos, m);
@@ -272,6 +273,7 @@ impl Improve {
                         run.last,
                         FarGoal::Stuck,
                         Scored::Winner,
+                        Some(run.scans),
                     );
                     *work += self.look.take_work();
                     m
@@ -437,6 +439,9 @@ struct Run {
     walk: CoverWalk,
     waypoint: usize,
     limit: usize,
+    /// The run its far-goal scans belong to: within one completion cells
+    /// are only covered ([`FarScan::shrinking_since`]).
+    scans: u64,
 }
 
 /// A decision under way: its completions are made one after another, the

@@ -12,6 +12,7 @@
 use crate::belief::BeliefState;
 use crate::coverage::Coverage;
 use crate::lattice::{Move, Sensor, Torus};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The planning mass of each cell, 0 where searched: what a plan made
 /// from here has left to find.
@@ -67,11 +68,15 @@ impl FarScan {
         self.next = Some(run);
     }
 
-    /// Forgets an unused [`shrinking_since`](FarScan::shrinking_since).
-    pub fn forget_run(&mut self) {
-        self.next = None;
+    /// A run number no other run in the process has, for
+    /// [`shrinking_since`](FarScan::shrinking_since).
+    pub fn new_run() -> u64 {
+        RUNS.fetch_add(1, Relaxed)
     }
 }
+
+/// Runs of far-goal scans begun so far in the process.
+static RUNS: AtomicU64 = AtomicU64::new(0);
 
 /// Cells of the bounds' pass per work unit: a compare a cell, eight at a
 /// time (timed with `torus-search bench --moves`' plan slices).
