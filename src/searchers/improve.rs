@@ -84,6 +84,8 @@ pub struct Improve {
     incumbent: Vec<u32>,
     inc_at: usize,
     scratch: Vec<u32>,
+    /// Scratch for the cover walk's far-goal scans.
+    rows: Vec<f64>,
     best: Vec<u32>,
     scores: Option<MoveScores>,
     /// The decision under way, between slices.
@@ -155,6 +157,7 @@ impl Improve {
             incumbent: Vec::with_capacity(room),
             inc_at: 0,
             scratch: Vec::with_capacity(room),
+            rows: Vec::with_capacity(torus.n() as usize),
             best: Vec::with_capacity(room),
             scores: None,
             pending: None,
@@ -256,7 +259,10 @@ impl Improve {
                         None => {
                             // A new far goal costs a scan of the cells.
                             let scans = run.walk.scans();
-                            let m = run.walk.next_move(torus, sensor, belief, &self.cov, p);
+                            let rows = &mut self.rows;
+                            let m = run
+                                .walk
+                                .next_move(torus, sensor, belief, &self.cov, p, rows);
                             *work += (run.walk.scans() - scans) as u64 * cells;
                             m
                         }
