@@ -337,7 +337,7 @@ pub fn completion(
 /// A [`completion`] made in slices: [`Completion::moves`] adds a few moves
 /// at a time. Between slices `cov` holds the simulation so far, so it must
 /// not be used for anything else until the completion is done.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Completion {
     left: u32,
     p: u32,
