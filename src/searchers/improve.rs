@@ -85,7 +85,7 @@ pub struct Improve {
     inc_at: usize,
     scratch: Vec<u32>,
     /// Scratch for the cover walk's far-goal scans.
-    rows: Vec<f64>,
+    goals: FarScan,
     best: Vec<u32>,
     scores: Option<MoveScores>,
     /// The decision under way, between slices.
@@ -157,7 +157,7 @@ impl Improve {
             incumbent: Vec::with_capacity(room),
             inc_at: 0,
             scratch: Vec::with_capacity(room),
-            rows: Vec::with_capacity(torus.n() as usize),
+            goals: FarScan::default(),
             best: Vec::with_capacity(room),
             scores: None,
             pending: None,
@@ -232,7 +232,6 @@ impl Improve {
         work: &mut u64,
         budget: u64,
     ) -> bool {
-        let cells = torus.cells() as u64;
         while run.left.cells > 0 && self.scratch.len() < run.limit {
             if *work >= budget {
                 return false;
@@ -257,13 +256,11 @@ impl Improve {
                     {
                         Some(&w) => toward(torus, p, w, Move::Right),
                         None => {
-                            // A new far goal costs a scan of the cells.
-                            let scans = run.walk.scans();
-                            let rows = &mut self.rows;
-                            let m = run
-                                .walk
-                                .next_move(torus, sensor, belief, &self.cov, p, rows);
-                            *work += (run.walk.scans() - scans) as u64 * cells;
+                            // A new far goal costs a scan, as counted.
+                            let (goals, cov) = (&mut self.goals, &self.cov);
+                            let at = Some(run.scans);
+                            let m = run.walk.next_move(torus, sensor, belief, cov, p, goals, at);
+                            *work += std::mem::take(&mut goals.work);
                             m
                         }
                     }

@@ -31,7 +31,7 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
     cov.gain(sensor, belief, cell)
 }
 
-/// Scratch for [`fallback_target`], and the work its scans have done in
+/// Scratch for [`fallback_target`] and the cover walk's goal scan ([`CoverWalk`]), and the work its scans have done in
 /// [`crate::searchers::SLICE_WORK`]'s units (a unit is about what a
 /// simulated lookahead move costs): one per [`ROW_CELLS_PER_UNIT`] cells of
 /// the rows scanned, and one per [`BOUND_CELLS_PER_UNIT`] cells of the
@@ -73,6 +73,26 @@ impl FarScan {
     pub fn new_run() -> u64 {
         RUNS.fetch_add(1, Relaxed)
     }
+
+    /// Begins a scan of an `n`-wide lattice and returns its stamp: keeps
+    /// the rows' maxima when the caller said the scan continues their
+    /// run, else reads them all (and counts the work).
+    fn begin(&mut self, belief: &BeliefState, cov: &Coverage, n: usize) -> u32 {
+        let run = self.next.take();
+        self.stamp = self.stamp.wrapping_add(1);
+        let stamp = self.stamp;
+        // (A stamp that has wrapped round reads every row afresh.)
+        let reuse = run.is_some() && run == self.kept_for && self.rows.len() == n && stamp != 0;
+        self.kept_for = run;
+        if !reuse {
+            self.rows.resize(n, 0.0);
+            self.fresh.clear();
+            self.fresh.resize(n, stamp);
+            cov.live_max_rows(belief, &mut self.rows);
+            self.work += ((n * n) as u64).div_ceil(BOUND_CELLS_PER_UNIT);
+        }
+        stamp
+    }
 }
 
 /// Runs of far-goal scans begun so far in the process.
@@ -112,19 +132,7 @@ pub fn fallback_target(
     let n = torus.n();
     let nu = n as usize;
     let (px, py) = torus.xy(pos);
-    let run = scan.next.take();
-    scan.stamp = scan.stamp.wrapping_add(1);
-    let stamp = scan.stamp;
-    // (A stamp that has wrapped round reads every row afresh.)
-    let reuse = run.is_some() && run == scan.kept_for && scan.rows.len() == nu && stamp != 0;
-    scan.kept_for = run;
-    if !reuse {
-        scan.rows.resize(nu, 0.0);
-        scan.fresh.clear();
-        scan.fresh.resize(nu, stamp);
-        cov.live_max_rows(belief, &mut scan.rows);
-        scan.work += (torus.cells() as u64).div_ceil(BOUND_CELLS_PER_UNIT);
-    }
+    let stamp = scan.begin(belief, cov, nu);
     // The row's gains, and each column's distance from `pos` (small
     // integers, so sums of them as f64 are exact).
     scan.buf.resize(2 * nu, 0.0);
@@ -243,27 +251,18 @@ pub fn reverse(m: Move) -> Move {
 pub struct CoverWalk {
     last: Option<Move>,
     goal: Option<u32>,
-    /// Far-goal scans made, for callers that account for work.
-    scans: u32,
 }
 
 impl CoverWalk {
     /// A walk that last moved `last` (its preferred direction), with no goal.
     pub fn new(last: Option<Move>) -> CoverWalk {
-        CoverWalk {
-            last,
-            goal: None,
-            scans: 0,
-        }
+        CoverWalk { last, goal: None }
     }
 
-    /// The O(N²) scans for a new far goal made so far.
-    pub fn scans(&self) -> u32 {
-        self.scans
-    }
-
-    /// The next move from `pos` over the simulated coverage `cov`; `rows`
-    /// is scratch for its far-goal scans.
+    /// The next move from `pos` over the simulated coverage `cov`; `scan`
+    /// is scratch for its far-goal scans, which continue `run` if given
+    /// ([`FarScan::shrinking_since`]) and count their work in it.
+    #[allow(clippy::too_many_arguments)]
     pub fn next_move(
         &mut self,
         torus: &Torus,
@@ -271,7 +270,8 @@ impl CoverWalk {
         belief: &BeliefState,
         cov: &Coverage,
         pos: u32,
-        rows: &mut Vec<f64>,
+        scan: &mut FarScan,
+        run: Option<u64>,
     ) -> Move {
         let mut best = (0.0, self.last.unwrap_or(Move::Up));
         for m in self.last.into_iter().chain(Move::ALL) {
@@ -285,8 +285,7 @@ impl CoverWalk {
         } else {
             let stale = self.goal.is_none_or(|g| cov.gain(sensor, belief, g) <= 0.0);
             if stale {
-                self.scans += 1;
-                self.goal = cell_goal(torus, belief, cov, pos, rows);
+                self.goal = cell_goal(torus, belief, cov, pos, scan, run);
             }
             match self.goal {
                 Some(g) => toward(torus, pos, g, best.1),
@@ -300,25 +299,30 @@ impl CoverWalk {
 
 /// The uncovered cell with positive mass maximising mass ÷ (distance + 1)
 /// (cheaper than [`fallback_target`]: one cell, not a disc, per candidate);
-/// ties go to the lower cell index. `rows` is scratch.
+/// ties go to the lower cell index. `scan` is scratch, whose rows' maxima
+/// it keeps when `run` says the scan continues their run, as
+/// [`fallback_target`] does ([`FarScan::shrinking_since`]).
 ///
 /// Rows are visited nearest first, and a row is skipped when its largest
 /// uncovered mass ÷ (its distance + 1), which no value in it exceeds (bit
-/// for bit: division is monotone), is below the best value found: one
-/// branch-free pass over the lattice for the rows' maxima, then a division
-/// only for the cells of the rows that can win.
+/// for bit: division is monotone), is below the best value found: the
+/// rows' maxima come from one branch-free pass (or from the scan before,
+/// a row read afresh only when its old maximum would not skip it), then a
+/// division only for the cells of the rows that can win.
 fn cell_goal(
     torus: &Torus,
     belief: &BeliefState,
     cov: &Coverage,
     pos: u32,
-    rows: &mut Vec<f64>,
+    scan: &mut FarScan,
+    run: Option<u64>,
 ) -> Option<u32> {
     let mass = belief.plan_mass();
     let n = torus.n();
+    let nu = n as usize;
     let (px, py) = torus.xy(pos);
-    rows.resize(n as usize, 0.0);
-    cov.live_max_rows(belief, rows);
+    scan.next = run;
+    let stamp = scan.begin(belief, cov, nu);
     let mut best: Option<(u32, f64)> = None;
     for k in 0..n {
         // Rows py, py + 1, py − 1, py + 2, …, each once.
@@ -328,11 +332,21 @@ fn cell_goal(
         } else {
             (py + n - step) % n
         };
-        let dy = torus.axis_dist(py, y);
-        if best.is_some_and(|(_, b)| rows[y as usize] / (dy as f64 + 1.0) < b) {
+        let (yu, dy) = (y as usize, torus.axis_dist(py, y));
+        let beaten = |m: f64| best.is_some_and(|(_, b)| m / (dy as f64 + 1.0) < b);
+        if beaten(scan.rows[yu]) {
             continue;
         }
-        let row = (y * n) as usize;
+        if scan.fresh[yu] != stamp {
+            scan.fresh[yu] = stamp;
+            scan.rows[yu] = cov.live_max_row(belief, nu, yu);
+            scan.work += (n as u64).div_ceil(BOUND_CELLS_PER_UNIT);
+            if beaten(scan.rows[yu]) {
+                continue;
+            }
+        }
+        scan.work += (n as u64).div_ceil(ROW_CELLS_PER_UNIT);
+        let row = yu * nu;
         for x in 0..n {
             let c = row + x as usize;
             let m = mass[c];
@@ -445,7 +459,8 @@ mod tests {
         // Every cell in index order, as the goal was found before rows were
         // skipped: the same cell on priors full of ties (uniform, painted
         // in four levels) and smooth ones, as ever more is searched and
-        // simulated, from random cells.
+        // simulated, from random cells; and with the rows' maxima kept
+        // from scan to scan, for less work.
         let full = |torus: &Torus, belief: &BeliefState, cov: &Coverage, pos: u32| {
             let mut best: Option<(u32, f64)> = None;
             for (c, &m) in belief.plan_mass().iter().enumerate() {
@@ -460,8 +475,8 @@ mod tests {
             best.map(|(c, _)| c)
         };
         let mut r = rng::stream(13, 0);
-        let mut rows = Vec::new();
-        let (mut checked, mut some) = (0, 0);
+        let (mut checked, mut some, mut runs) = (0, 0, 0);
+        let (mut work, mut kept_work) = (0, 0);
         for n in [3u32, 4, 7, 12, 40] {
             let torus = Torus::new(n).unwrap();
             let cells = torus.cells();
@@ -475,11 +490,23 @@ mod tests {
                 let prior = TargetPrior::new(&torus, &spec).unwrap();
                 let mut belief = BeliefState::new(Belief::Posterior, prior, None);
                 let mut cov = Coverage::new(cells);
-                for _ in 0..2 * cells {
+                // A second scratch keeps its rows' maxima through a run,
+                // which a cleared simulation ends.
+                let (mut scan, mut kept) = (FarScan::default(), FarScan::default());
+                runs += 1;
+                for i in 0..2 * cells {
+                    if i == cells / 2 {
+                        cov.clear();
+                        runs += 1;
+                    }
                     let pos = rng::below(&mut r, cells as u32);
                     let want = full(&torus, &belief, &cov, pos);
-                    let got = cell_goal(&torus, &belief, &cov, pos, &mut rows);
+                    let got = cell_goal(&torus, &belief, &cov, pos, &mut scan, None);
                     assert_eq!(got, want, "n {n}, {spec:?}, pos {pos}");
+                    let got = cell_goal(&torus, &belief, &cov, pos, &mut kept, Some(runs));
+                    assert_eq!(got, want, "kept: n {n}, {spec:?}, pos {pos}");
+                    work += std::mem::take(&mut scan.work);
+                    kept_work += std::mem::take(&mut kept.work);
                     checked += 1;
                     some += want.is_some() as u32;
                     let c = rng::below(&mut r, cells as u32);
@@ -495,6 +522,7 @@ mod tests {
             checked > 10_000 && some > checked / 2,
             "{some} of {checked}"
         );
+        assert!(kept_work * 10 < work * 9, "{kept_work} against {work}");
     }
 
     #[test]
