@@ -200,17 +200,7 @@ impl Torus {
     #[inline]
     pub fn near(&self, x: i32, y: i32) -> (u32, i32, i32) {
         let n = self.n as i32;
-        let wrap = |v: i32| {
-            debug_assert!((-n..2 * n).contains(&v), "{v} is not within n of 0..{n}");
-            if v < 0 {
-                v + n
-            } else if v >= n {
-                v - n
-            } else {
-                v
-            }
-        };
-        let (x, y) = (wrap(x), wrap(y));
+        let (x, y) = (wrap_once(n, x), wrap_once(n, y));
         ((y * n + x) as u32, x, y)
     }
 
@@ -419,20 +409,26 @@ fn disc(n: u32, offsets: &[(i32, i32)], cell: u32) -> impl Iterator<Item = u32> 
 fn disc_xy(n: u32, offsets: &[(i32, i32)], x: i32, y: i32) -> impl Iterator<Item = u32> + '_ {
     let n = n as i32;
     // Offsets are torus displacements, |d| ≤ n/2, so one correction wraps
-    // a coordinate: no division per cell (the belief planners and the
-    // belief MCTS sweep discs in their inner loops).
-    let wrap = move |v: i32| {
-        if v < 0 {
-            v + n
-        } else if v >= n {
-            v - n
-        } else {
-            v
-        }
-    };
+    // a coordinate (the belief planners and the belief MCTS sweep discs in
+    // their inner loops).
     offsets
         .iter()
-        .map(move |&(dx, dy)| (wrap(y + dy) * n + wrap(x + dx)) as u32)
+        .map(move |&(dx, dy)| (wrap_once(n, y + dy) * n + wrap_once(n, x + dx)) as u32)
+}
+
+/// The coordinate `v`, within `n` of `0..n`, wrapped onto `0..n` by one
+/// correction: no division, which the scans and disc sweeps that wrap
+/// every cell they touch would otherwise pay for.
+#[inline]
+pub fn wrap_once(n: i32, v: i32) -> i32 {
+    debug_assert!((-n..2 * n).contains(&v), "{v} is not within n of 0..{n}");
+    if v < 0 {
+        v + n
+    } else if v >= n {
+        v - n
+    } else {
+        v
+    }
 }
 
 #[cfg(test)]

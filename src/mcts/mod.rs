@@ -371,6 +371,7 @@ impl<S: Stats> Searcher for Mcts<S> {
                         w.pos,
                         None,
                         &mut self.scan,
+                        None,
                     )
                     .map(|(c, _)| c);
                 }

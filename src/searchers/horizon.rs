@@ -267,7 +267,7 @@ impl Lookahead {
 /// [`FarGoal::Compared`], when the goal is better. Returns the move, the
 /// lookahead's result (scored as `scored` says) and the goal it headed for,
 /// if any. `run`, if given, says that the far-goal scan continues that run
-/// ([`FarScan::shrinking_since`]).
+/// ([`FarScan`]).
 #[allow(clippy::too_many_arguments)]
 pub fn decide(
     look: &mut Lookahead,
@@ -285,13 +285,10 @@ pub fn decide(
     if found.gain > 0.0 && far == FarGoal::Stuck {
         return (found.first, found, None);
     }
-    if let Some(run) = run {
-        look.scan.shrinking_since(run);
-    }
     // Only a goal worth more than the lookahead's rate is taken, so the scan
     // may skip every row that cannot beat it.
     let beat = (found.gain > 0.0).then(|| found.gain / look.depth() as f64);
-    match fallback_target(torus, sensor, belief, cov, pos, beat, &mut look.scan) {
+    match fallback_target(torus, sensor, belief, cov, pos, beat, &mut look.scan, run) {
         Some((goal, _)) => (toward(torus, pos, goal, found.first), found, Some(goal)),
         None => (found.first, found, None),
     }
@@ -353,7 +350,7 @@ pub struct Completion {
     enough: f64,
     /// This completion's number in the process: its far-goal scans, move
     /// after move, tell the scan that only cells were covered since the
-    /// last ([`FarScan::shrinking_since`]).
+    /// last ([`FarScan`]).
     run: u64,
 }
 
@@ -462,7 +459,7 @@ pub struct Horizon {
     scores: Option<MoveScores>,
     /// Its number among the process's runs of far-goal scans: a searcher
     /// plays one episode, whose searched cells only grow, so each scan
-    /// may keep what the one before read ([`FarScan::shrinking_since`]).
+    /// may keep what the one before read ([`FarScan`]).
     run: u64,
 }
 

@@ -443,7 +443,7 @@ struct Run {
     waypoint: usize,
     limit: usize,
     /// The run its far-goal scans belong to: within one completion cells
-    /// are only covered ([`FarScan::shrinking_since`]).
+    /// are only covered ([`FarScan`]).
     scans: u64,
 }
 

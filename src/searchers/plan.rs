@@ -11,7 +11,7 @@
 
 use crate::belief::BeliefState;
 use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
+use crate::lattice::{wrap_once, Move, Sensor, Torus};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The planning mass of each cell, 0 where searched: what a plan made
@@ -38,8 +38,9 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 /// rows whose maxima it reads and terms of the rows' bounds.
 ///
 /// A caller that scans again and again while the uncovered mass only
-/// shrinks (a horizon-rule completion, move after move) may say so with
-/// [`FarScan::shrinking_since`]: the scan then keeps each row's largest
+/// shrinks (a horizon-rule completion, move after move) may say so by
+/// passing the scan the run it continues (from [`FarScan::new_run`]): the
+/// scan then keeps each row's largest
 /// uncovered mass from the scan before as a bound (it can only have
 /// fallen), and reads a row afresh only when that bound would not let a
 /// row it reaches be skipped. The rows scanned, and so the result, are
@@ -53,32 +54,23 @@ pub struct FarScan {
     fresh: Vec<u32>,
     stamp: u32,
     kept_for: Option<u64>,
-    /// The run the next scan continues, if its caller said so.
-    next: Option<u64>,
     /// Work units done since last taken.
     pub work: u64,
 }
 
 impl FarScan {
-    /// Says that the next scan continues run `run`: since the last scan
-    /// of that run with this scratch (if any), cells have only been
-    /// covered or searched, on the same lattice, belief and sensor. The
-    /// next scan forgets it, whether it keeps it or not.
-    pub fn shrinking_since(&mut self, run: u64) {
-        self.next = Some(run);
-    }
-
-    /// A run number no other run in the process has, for
-    /// [`shrinking_since`](FarScan::shrinking_since).
+    /// A run number no other run in the process has. A scan given a run
+    /// says that since the last scan of that run with this scratch (if
+    /// any), cells have only been covered or searched, on the same
+    /// lattice, belief and sensor.
     pub fn new_run() -> u64 {
         RUNS.fetch_add(1, Relaxed)
     }
 
     /// Begins a scan of an `n`-wide lattice and returns its stamp: keeps
-    /// the rows' maxima when the caller said the scan continues their
-    /// run, else reads them all (and counts the work).
-    fn begin(&mut self, belief: &BeliefState, cov: &Coverage, n: usize) -> u32 {
-        let run = self.next.take();
+    /// the rows' maxima when the scan continues their `run`, else reads
+    /// them all (and counts the work).
+    fn begin(&mut self, belief: &BeliefState, cov: &Coverage, n: usize, run: Option<u64>) -> u32 {
         self.stamp = self.stamp.wrapping_add(1);
         let stamp = self.stamp;
         // (A stamp that has wrapped round reads every row afresh.)
@@ -118,7 +110,8 @@ pub const ROW_CELLS_PER_UNIT: u64 = 8;
 /// of a full scan. One pass over the lattice for the bounds, then a row of
 /// gains at a time ([`Coverage::gains_row`]) for the rows not skipped:
 /// O(N² · disc) at worst. `scan` is scratch the caller keeps, so the scan
-/// allocates nothing, and counts the work done in it.
+/// allocates nothing, and counts the work done in it; `run`, if given, is
+/// the run the scan continues ([`FarScan`]).
 #[allow(clippy::too_many_arguments)]
 pub fn fallback_target(
     torus: &Torus,
@@ -128,11 +121,12 @@ pub fn fallback_target(
     pos: u32,
     beat: Option<f64>,
     scan: &mut FarScan,
+    run: Option<u64>,
 ) -> Option<(u32, f64)> {
     let n = torus.n();
     let nu = n as usize;
     let (px, py) = torus.xy(pos);
-    let stamp = scan.begin(belief, cov, nu);
+    let stamp = scan.begin(belief, cov, nu, run);
     // The row's gains, and each column's distance from `pos` (small
     // integers, so sums of them as f64 are exact).
     scan.buf.resize(2 * nu, 0.0);
@@ -145,23 +139,14 @@ pub fn fallback_target(
     // lattice: one correction wraps them, without a division (a scan
     // wraps every row's disc rows, and divisions were most of its cost
     // once it kept its rows' maxima).
-    let wrap = |v: i64| {
-        let n = n as i64;
-        (if v < 0 {
-            v + n
-        } else if v >= n {
-            v - n
-        } else {
-            v
-        }) as usize
-    };
+    let wrap = |v: i32| wrap_once(n as i32, v) as usize;
     // Summed in the sensor's order from +0.0, as `gains_row` sums: with
     // every row read at this scan, bit for bit the bound of a scan from
     // scratch; with older reads, no smaller (rounding is monotone).
     let bound = |live: &[f64], y: u32| {
         let mut s = 0.0;
         for &(_, dy) in sensor.offsets() {
-            s += live[wrap(y as i64 + dy as i64)];
+            s += live[wrap(y as i32 + dy)];
         }
         s
     };
@@ -175,15 +160,15 @@ pub fn fallback_target(
     };
     // Rows by distance from `py`: py, py + 1, py − 1, py + 2, …
     for k in 0..n {
-        let step = (k as i64 + 1) / 2;
-        let y = wrap(py as i64 + if k % 2 == 1 { step } else { -step }) as u32;
+        let step = (k as i32 + 1) / 2;
+        let y = wrap(py as i32 + if k % 2 == 1 { step } else { -step }) as u32;
         let dy = torus.axis_dist(py, y) as f64 + 1.0;
         if skip(bound(live, y) / dy, best) {
             continue;
         }
         let mut read = false;
         for &(_, oy) in sensor.offsets() {
-            let r = wrap(y as i64 + oy as i64);
+            let r = wrap(y as i32 + oy);
             if fresh[r] != stamp {
                 fresh[r] = stamp;
                 live[r] = cov.live_max_row(belief, nu, r);
@@ -261,7 +246,7 @@ impl CoverWalk {
 
     /// The next move from `pos` over the simulated coverage `cov`; `scan`
     /// is scratch for its far-goal scans, which continue `run` if given
-    /// ([`FarScan::shrinking_since`]) and count their work in it.
+    /// ([`FarScan`]) and count their work in it.
     #[allow(clippy::too_many_arguments)]
     pub fn next_move(
         &mut self,
@@ -301,7 +286,7 @@ impl CoverWalk {
 /// (cheaper than [`fallback_target`]: one cell, not a disc, per candidate);
 /// ties go to the lower cell index. `scan` is scratch, whose rows' maxima
 /// it keeps when `run` says the scan continues their run, as
-/// [`fallback_target`] does ([`FarScan::shrinking_since`]).
+/// [`fallback_target`] does ([`FarScan`]).
 ///
 /// Rows are visited nearest first, and a row is skipped when its largest
 /// uncovered mass ÷ (its distance + 1), which no value in it exceeds (bit
@@ -321,8 +306,7 @@ fn cell_goal(
     let n = torus.n();
     let nu = n as usize;
     let (px, py) = torus.xy(pos);
-    scan.next = run;
-    let stamp = scan.begin(belief, cov, nu);
+    let stamp = scan.begin(belief, cov, nu, run);
     let mut best: Option<(u32, f64)> = None;
     for k in 0..n {
         // Rows py, py + 1, py − 1, py + 2, …, each once.
@@ -527,8 +511,8 @@ mod tests {
 
     #[test]
     fn the_pruned_far_goal_scan_is_the_full_scan() {
-        // A second scratch is told before every scan that the mass has
-        // only shrunk since its last (`shrinking_since`) and keeps its
+        // A second scratch is given the run each scan continues (the mass
+        // has only shrunk since its last scan) and keeps its
         // rows' maxima from scan to scan: the same results, for less work.
         // Where the simulation is cleared (mass comes back), a new run
         // begins, which reads every row afresh.
@@ -565,12 +549,20 @@ mod tests {
                         }
                         let pos = rng::below(&mut r, cells as u32);
                         let want = full_scan(&torus, &sensor, &belief, &cov, pos);
-                        let got =
-                            fallback_target(&torus, &sensor, &belief, &cov, pos, None, &mut scan);
+                        let got = fallback_target(
+                            &torus, &sensor, &belief, &cov, pos, None, &mut scan, None,
+                        );
                         assert_eq!(got, want, "n {n}, {spec:?}, r_v {rv}, pos {pos}");
-                        kept.shrinking_since(runs);
-                        let got =
-                            fallback_target(&torus, &sensor, &belief, &cov, pos, None, &mut kept);
+                        let got = fallback_target(
+                            &torus,
+                            &sensor,
+                            &belief,
+                            &cov,
+                            pos,
+                            None,
+                            &mut kept,
+                            Some(runs),
+                        );
                         assert_eq!(got, want, "kept: n {n}, {spec:?}, r_v {rv}, pos {pos}");
                         let beats = match want {
                             Some((_, v)) => [0.0, v * 0.5, v, v * 1.5],
@@ -578,9 +570,6 @@ mod tests {
                         };
                         for beat in beats {
                             for (s, keep) in [(&mut scan, false), (&mut kept, true)] {
-                                if keep {
-                                    s.shrinking_since(runs);
-                                }
                                 let got = fallback_target(
                                     &torus,
                                     &sensor,
@@ -589,6 +578,7 @@ mod tests {
                                     pos,
                                     Some(beat),
                                     s,
+                                    keep.then_some(runs),
                                 );
                                 let want = want.filter(|&(_, v)| v > beat);
                                 assert_eq!(got, want, "beat {beat}, kept {keep}");
