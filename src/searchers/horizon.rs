@@ -348,6 +348,10 @@ pub struct Completion {
     /// every cell with mass).
     mass_left: f64,
     enough: f64,
+    /// The mass left at or below which each move is the greedy one, and
+    /// the depth-1 lookahead that makes it (from [`Completion::greedy_below`]).
+    greedy: f64,
+    step: Option<Lookahead>,
     /// This completion's number in the process: its far-goal scans, move
     /// after move, tell the scan that only cells were covered since the
     /// last ([`FarScan`]).
@@ -380,6 +384,8 @@ impl Completion {
             far,
             mass_left: belief.remaining(),
             enough: f64::NEG_INFINITY,
+            greedy: f64::NEG_INFINITY,
+            step: None,
             run: FarScan::new_run(),
         }
     }
@@ -391,6 +397,20 @@ impl Completion {
     pub fn ending_at(self, mass: f64) -> Completion {
         Completion {
             enough: mass,
+            ..self
+        }
+    }
+
+    /// The same completion, taking the greedy step once the planning mass
+    /// it has not covered is at most `mass`: the neighbour whose disc adds
+    /// the most (the horizon rule of depth 1), and only when none adds,
+    /// toward the far goal ([`FarGoal::Stuck`]). For a plan whose thin
+    /// tail is worth too little to pay for the deeper lookahead and a scan
+    /// a move (the belief MCTS's first plan).
+    pub fn greedy_below(self, mass: f64) -> Completion {
+        Completion {
+            greedy: mass,
+            step: Some(Lookahead::new(1)),
             ..self
         }
     }
@@ -416,6 +436,10 @@ impl Completion {
             && self.made < self.cap
             && work < max_work
         {
+            let (look, far) = match &mut self.step {
+                Some(step) if self.mass_left <= self.greedy => (step, FarGoal::Stuck),
+                _ => (&mut *look, self.far),
+            };
             let (m, _, _) = decide(
                 look,
                 torus,
@@ -424,7 +448,7 @@ impl Completion {
                 cov,
                 self.p,
                 self.last,
-                self.far,
+                far,
                 Scored::Winner,
                 Some(self.run),
             );
@@ -711,5 +735,65 @@ mod tests {
             }
         }
         assert_eq!(checked, 3 * 3 * 4 * 40);
+    }
+
+    /// A completion given [`Completion::greedy_below`] makes the moves of
+    /// the horizon rule while more than its mass is left, then the greedy
+    /// step: a neighbour whose disc adds the most, and when none adds, a
+    /// step toward the far goal. Greedy from the start fails the first
+    /// part; a rule that never turns greedy fails the last check.
+    #[test]
+    fn a_completion_takes_the_greedy_step_once_its_mass_is_thin() {
+        for (n, sigma) in [(40u32, 2.5), (40, 5.0), (24, 3.0)] {
+            let torus = Torus::new(n).unwrap();
+            let sensor = Sensor::new(&torus, 1.0).unwrap();
+            let prior = TargetPrior::new(&torus, &PriorSpec::Gaussian { sigma }).unwrap();
+            let mut belief = BeliefState::new(Belief::Posterior, prior, None);
+            let start = torus.cell(1, 1);
+            belief.search_around(&sensor, start);
+            let mass = belief.remaining();
+            let thin = mass * 1e-3;
+            let make = |run: &mut Completion| {
+                let (mut look, mut cov) = (Lookahead::new(5), Coverage::new(torus.cells()));
+                let mut out = Vec::new();
+                while !run.moves(&mut look, &torus, &sensor, &belief, &mut cov, &mut out, 97) {}
+                out
+            };
+            let new = || Completion::new(&belief, start, None, 5000, FarGoal::Compared);
+            let plain = make(&mut new());
+            let greedy = make(&mut new().greedy_below(thin));
+            assert_ne!(
+                plain, greedy,
+                "n {n}, σ {sigma}: the tail rule changes the plan"
+            );
+            let mut cov = Coverage::new(torus.cells());
+            let mut scan = FarScan::default();
+            let (mut left, mut p, mut tail) = (mass, start, 0);
+            for (i, &c) in greedy.iter().enumerate() {
+                if left > thin {
+                    assert_eq!(
+                        c, plain[i],
+                        "n {n}, σ {sigma}: move {i} is the horizon rule's"
+                    );
+                } else {
+                    let gains = Move::ALL.map(|m| cov.gain(&sensor, &belief, torus.step(p, m)));
+                    let most = gains.iter().cloned().fold(0.0, f64::max);
+                    if most > 0.0 {
+                        assert_eq!(cov.gain(&sensor, &belief, c), most, "move {i}");
+                    } else {
+                        let (goal, _) = fallback_target(
+                            &torus, &sensor, &belief, &cov, p, None, &mut scan, None,
+                        )
+                        .expect("mass is left");
+                        assert!(torus.l1(c, goal) < torus.l1(p, goal), "move {i}");
+                    }
+                    tail += 1;
+                }
+                assert_eq!(torus.l1(p, c), 1);
+                left -= cov.cover(&sensor, &belief, c);
+                p = c;
+            }
+            assert!(tail > 50, "n {n}, σ {sigma}: {tail} greedy moves");
+        }
     }
 }
