@@ -547,25 +547,13 @@ impl BeamSearch {
 
 /// The most new cells one move can cover, and the sensor's ℓ1 reach.
 fn front_and_reach(sensor: &Sensor) -> (usize, u32) {
-    let offsets = sensor.offsets();
-    let front = Move::ALL
-        .iter()
-        .map(|m| {
-            let (mx, my) = m.delta();
-            offsets
-                .iter()
-                .filter(|&&(dx, dy)| !offsets.contains(&(dx - mx, dy - my)))
-                .count()
-        })
-        .max()
-        .unwrap_or(1)
-        .max(1);
-    let reach = offsets
+    let reach = sensor
+        .offsets()
         .iter()
         .map(|&(dx, dy)| dx.unsigned_abs() + dy.unsigned_abs())
         .max()
         .unwrap_or(0);
-    (front, reach)
+    (sensor.front_len().max(1), reach)
 }
 
 /// A lower bound on `Σ R` over the moves after reaching `q` with mass `r`
