@@ -52,6 +52,10 @@ pub struct FarScan {
     /// stamp or before, under the run `kept_for`.
     rows: Vec<f64>,
     fresh: Vec<u32>,
+    /// Each row's largest disc gain when [`fallback_target`] last summed
+    /// the row's gains under the run `kept_for` (+∞ before): gains only
+    /// fall within a run, so it bounds the row's gains from above.
+    gains: Vec<f64>,
     stamp: u32,
     kept_for: Option<u64>,
     /// Work units done since last taken.
@@ -80,6 +84,8 @@ impl FarScan {
             self.rows.resize(n, 0.0);
             self.fresh.clear();
             self.fresh.resize(n, stamp);
+            self.gains.clear();
+            self.gains.resize(n, f64::INFINITY);
             cov.live_max_rows(belief, &mut self.rows);
             self.work += ((n * n) as u64).div_ceil(BOUND_CELLS_PER_UNIT);
         }
@@ -131,7 +137,7 @@ pub fn fallback_target(
     // integers, so sums of them as f64 are exact).
     scan.buf.resize(2 * nu, 0.0);
     let (gains, cols) = scan.buf.split_at_mut(nu);
-    let (live, fresh) = (&mut scan.rows, &mut scan.fresh);
+    let (live, fresh, kept) = (&mut scan.rows, &mut scan.fresh, &mut scan.gains);
     for (x, d) in (0..n).zip(cols.iter_mut()) {
         *d = torus.axis_dist(px, x) as f64;
     }
@@ -163,7 +169,11 @@ pub fn fallback_target(
         let step = (k as i32 + 1) / 2;
         let y = wrap(py as i32 + if k % 2 == 1 { step } else { -step }) as u32;
         let dy = torus.axis_dist(py, y) as f64 + 1.0;
-        if skip(bound(live, y) / dy, best) {
+        // No value in the row exceeds its largest gain ÷ dy: the gain kept
+        // from the row's last sum in this run bounds it, and so does the
+        // sum of its disc rows' largest masses.
+        let top = kept[y as usize];
+        if skip(top / dy, best) || skip(bound(live, y) / dy, best) {
             continue;
         }
         let mut read = false;
@@ -181,7 +191,9 @@ pub fn fallback_target(
         }
         cov.gains_row(sensor, belief, y, gains);
         scan.work += (n as u64).div_ceil(ROW_CELLS_PER_UNIT);
+        let mut most = 0.0;
         for ((x, &g), &dx) in (0..n).zip(gains.iter()).zip(cols.iter()) {
+            most = if g > most { g } else { most };
             if g <= 0.0 {
                 continue;
             }
@@ -194,6 +206,7 @@ pub fn fallback_target(
                 best = Some((c, v));
             }
         }
+        kept[y as usize] = most;
     }
     best
 }
