@@ -258,12 +258,16 @@ impl Coverage {
             }
             return best;
         }
-        let (n, half) = (n as i64, half as i64);
-        let (x, y) = ((cell as i64) % n, (cell as i64) / n);
-        for yy in y - half..=y + half {
-            let row = yy.rem_euclid(n) * n;
-            for xx in x - half..=x + half {
-                let v = live((row + xx.rem_euclid(n)) as usize);
+        let (n, half) = (n as usize, half as usize);
+        let (x, y) = (cell as usize % n, cell as usize / n);
+        // Each row's columns x − half ..= x + half as at most two unwrapped
+        // stretches: no division a cell (a max is exact in any order).
+        let (width, lo) = (2 * half + 1, (x + n - half) % n);
+        let first = width.min(n - lo);
+        for k in 0..width {
+            let row = (y + n - half + k) % n * n;
+            for i in (row + lo..row + lo + first).chain(row..row + width - first) {
+                let v = live(i);
                 best = if v > best { v } else { best };
             }
         }
@@ -379,6 +383,46 @@ mod tests {
                     belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
                     cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn the_largest_live_mass_near_a_cell_is_the_box_scanned_cell_by_cell() {
+        // Every cell, boxes from the cell alone to wider than the lattice,
+        // the box wrapping at every edge; against the cells whose column and
+        // row lie within `half` of the cell's on the torus. A box one
+        // column short on the left (tried) fails it.
+        let mut rng = crate::rng::stream(9, 0);
+        for n in [3u32, 4, 7, 12] {
+            let torus = Torus::new(n).unwrap();
+            let sensor = Sensor::new(&torus, 1.0).unwrap();
+            let weights: Vec<f64> = (0..n * n)
+                .map(|_| crate::rng::unit_f64(&mut rng) + 0.01)
+                .collect();
+            let mut belief = weighted(&torus, &weights);
+            let mut cov = Coverage::new(torus.cells());
+            for round in 0..4 {
+                for cell in 0..n * n {
+                    let (x, y) = torus.xy(cell);
+                    for half in 0..=n / 2 + 1 {
+                        let want = (0..n * n)
+                            .filter(|&c| {
+                                let (cx, cy) = torus.xy(c);
+                                let box_wraps = 2 * half + 1 >= n;
+                                box_wraps
+                                    || (torus.axis_dist(x, cx) <= half
+                                        && torus.axis_dist(y, cy) <= half)
+                            })
+                            .filter(|&c| !cov.covered(&belief, c))
+                            .map(|c| belief.plan_mass()[c as usize])
+                            .fold(0.0, f64::max);
+                        let got = cov.live_max_near(&belief, n, cell, half);
+                        assert_eq!(got, want, "n {n} round {round} cell {cell} half {half}");
+                    }
+                }
+                belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
+                cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
             }
         }
     }
