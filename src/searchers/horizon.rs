@@ -22,7 +22,7 @@
 //! The planner is deterministic: its path depends only on the belief, so
 //! `run --exact` evaluates it exactly.
 
-use super::plan::{fallback_target, reverse, toward, FarScan};
+use super::plan::{fallback_target, toward, FarScan};
 use super::{MoveScores, Searcher, SearcherInfo, World};
 use crate::belief::BeliefState;
 use crate::config::Config;
@@ -100,6 +100,19 @@ fn order(last: Option<Move>, skip: Option<Move>) -> impl Iterator<Item = Move> {
         .chain(Move::ALL.into_iter().filter(move |&m| Some(m) != last))
         .filter(move |&m| Some(m) != skip)
 }
+
+/// [`order`]`(Some(last), Some(reverse(last)))` by `last`'s index: `last`,
+/// then the two turns in `Move::ALL` order. A table, for the lookahead's
+/// inner loops.
+const ONWARD: [[Move; 3]; 4] = {
+    use Move::{Down, Left, Right, Up};
+    [
+        [Up, Right, Left],
+        [Right, Up, Down],
+        [Down, Right, Left],
+        [Left, Up, Down],
+    ]
+};
 
 impl Lookahead {
     /// A lookahead of depth `h` (at least 1).
@@ -227,7 +240,7 @@ impl Lookahead {
         if k + 1 == self.h {
             // The last move: its gain is all that is needed, so nothing is
             // marked or undone (two thirds of the sequences' moves).
-            for m in order(Some(last), Some(reverse(last))) {
+            for &m in &ONWARD[last as usize] {
                 let q = torus.step(pos, m);
                 let g = cov.step_gain(sensor, belief, m, q);
                 let total = acc + w * g;
@@ -240,7 +253,7 @@ impl Lookahead {
             }
             return;
         }
-        for m in order(Some(last), Some(reverse(last))) {
+        for &m in &ONWARD[last as usize] {
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
             let g = cov.cover_step(sensor, belief, m, q);
@@ -561,6 +574,7 @@ mod tests {
     use crate::belief::Belief;
     use crate::prior::{PriorSpec, TargetPrior};
     use crate::rng;
+    use crate::searchers::plan::reverse;
 
     /// The best total and its sequence below a node, by the rule without
     /// bounds or shortcuts: every sequence covered and undone, first
@@ -618,6 +632,14 @@ mod tests {
     /// not been stood on, depths 1–5, sensor radii 0 to 2.5, and priors
     /// with ties (uniform, painted levels) and without; a bound one move
     /// short (tried) fails it. Scoring only the winner finds the same.
+    #[test]
+    fn the_onward_table_is_the_order_without_the_reversal() {
+        for last in Move::ALL {
+            let want: Vec<Move> = order(Some(last), Some(reverse(last))).collect();
+            assert_eq!(ONWARD[last as usize].to_vec(), want, "{last:?}");
+        }
+    }
+
     #[test]
     fn the_bounded_lookahead_finds_what_every_sequence_finds() {
         let mut r = rng::stream(5, 0);
