@@ -562,26 +562,11 @@ mod tests {
                         }
                         let pos = rng::below(&mut r, cells as u32);
                         let want = full_scan(&torus, &sensor, &belief, &cov, pos);
-                        let got = fallback_target(
-                            &torus, &sensor, &belief, &cov, pos, None, &mut scan, None,
-                        );
-                        assert_eq!(got, want, "n {n}, {spec:?}, r_v {rv}, pos {pos}");
-                        let got = fallback_target(
-                            &torus,
-                            &sensor,
-                            &belief,
-                            &cov,
-                            pos,
-                            None,
-                            &mut kept,
-                            Some(runs),
-                        );
-                        assert_eq!(got, want, "kept: n {n}, {spec:?}, r_v {rv}, pos {pos}");
                         let beats = match want {
                             Some((_, v)) => [0.0, v * 0.5, v, v * 1.5],
                             None => [0.0; 4],
                         };
-                        for beat in beats {
+                        for beat in std::iter::once(None).chain(beats.map(Some)) {
                             for (s, keep) in [(&mut scan, false), (&mut kept, true)] {
                                 let got = fallback_target(
                                     &torus,
@@ -589,12 +574,15 @@ mod tests {
                                     &belief,
                                     &cov,
                                     pos,
-                                    Some(beat),
+                                    beat,
                                     s,
                                     keep.then_some(runs),
                                 );
-                                let want = want.filter(|&(_, v)| v > beat);
-                                assert_eq!(got, want, "beat {beat}, kept {keep}");
+                                let want = want.filter(|&(_, v)| beat.is_none_or(|f| v > f));
+                                assert_eq!(
+                                    got, want,
+                                    "n {n}, {spec:?}, r_v {rv}, pos {pos}, beat {beat:?}, kept {keep}"
+                                );
                             }
                         }
                         work += std::mem::take(&mut scan.work);
