@@ -625,13 +625,6 @@ mod tests {
         }
     }
 
-    /// The lookahead, with its bound on what the moves left can add and its
-    /// unmarked last move, finds what trying every sequence finds: each
-    /// first move's score, the move, the gain and the sequence, bit for bit.
-    /// Random searched sets and simulations, positions that have and have
-    /// not been stood on, depths 1–5, sensor radii 0 to 2.5, and priors
-    /// with ties (uniform, painted levels) and without; a bound one move
-    /// short (tried) fails it. Scoring only the winner finds the same.
     #[test]
     fn the_onward_table_is_the_order_without_the_reversal() {
         for last in Move::ALL {
@@ -640,6 +633,13 @@ mod tests {
         }
     }
 
+    /// The lookahead, with its bound on what the moves left can add and its
+    /// unmarked last move, finds what trying every sequence finds: each
+    /// first move's score, the move, the gain and the sequence, bit for bit.
+    /// Random searched sets and simulations, positions that have and have
+    /// not been stood on, depths 1–5, sensor radii 0 to 2.5, and priors
+    /// with ties (uniform, painted levels) and without; a bound one move
+    /// short (tried) fails it. Scoring only the winner finds the same.
     #[test]
     fn the_bounded_lookahead_finds_what_every_sequence_finds() {
         let mut r = rng::stream(5, 0);
@@ -762,8 +762,10 @@ mod tests {
     /// A completion given [`Completion::greedy_below`] makes the moves of
     /// the horizon rule while more than its mass is left, then the greedy
     /// step: a neighbour whose disc adds the most, and when none adds, a
-    /// step toward the far goal. Greedy from the start fails the first
-    /// part; a rule that never turns greedy fails the last check.
+    /// step toward the far goal. Tried: a rule greedy from the start fails
+    /// on a move of the horizon rule's part, one that never turns greedy
+    /// fails the first check, and one that compares the far goal in the
+    /// tail fails on a greedy move.
     #[test]
     fn a_completion_takes_the_greedy_step_once_its_mass_is_thin() {
         for (n, sigma) in [(40u32, 2.5), (40, 5.0), (24, 3.0)] {
