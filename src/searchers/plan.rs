@@ -40,11 +40,11 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 /// A caller that scans again and again while the uncovered mass only
 /// shrinks (a horizon-rule completion, move after move) may say so by
 /// passing the scan the run it continues (from [`FarScan::new_run`]): the
-/// scan then keeps each row's largest
-/// uncovered mass from the scan before as a bound (it can only have
-/// fallen), and reads a row afresh only when that bound would not let a
-/// row it reaches be skipped. The rows scanned, and so the result, are
-/// those of a scan from scratch.
+/// scan then keeps each row's largest uncovered mass, and its largest
+/// disc gain, from the scans before as bounds (both can only have fallen),
+/// and reads a row afresh only when the mass bound would not let a row it
+/// reaches be skipped. The result is that of a scan from scratch (a row
+/// skipped by its kept gain holds no cell that could win).
 #[derive(Clone, Debug, Default)]
 pub struct FarScan {
     buf: Vec<f64>,
