@@ -176,14 +176,20 @@ pub fn fallback_target(
         if skip(top / dy, best) || skip(bound(live, y) / dy, best) {
             continue;
         }
+        // Only a row not summed yet in this run reads its disc rows'
+        // masses afresh, for a tighter bound before it is summed: a row
+        // summed before is bounded by its kept gain, which fresher masses
+        // seldom beat (reading them cost more than the sums they saved).
         let mut read = false;
-        for &(_, oy) in sensor.offsets() {
-            let r = wrap(y as i32 + oy);
-            if fresh[r] != stamp {
-                fresh[r] = stamp;
-                live[r] = cov.live_max_row(belief, nu, r);
-                scan.work += (n as u64).div_ceil(BOUND_CELLS_PER_UNIT);
-                read = true;
+        if top == f64::INFINITY {
+            for &(_, oy) in sensor.offsets() {
+                let r = wrap(y as i32 + oy);
+                if fresh[r] != stamp {
+                    fresh[r] = stamp;
+                    live[r] = cov.live_max_row(belief, nu, r);
+                    scan.work += (n as u64).div_ceil(BOUND_CELLS_PER_UNIT);
+                    read = true;
+                }
             }
         }
         if read && skip(bound(live, y) / dy, best) {
