@@ -42,9 +42,10 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
 /// passing the scan the run it continues (from [`FarScan::new_run`]): the
 /// scan then keeps each row's largest uncovered mass, and its largest
 /// disc gain, from the scans before as bounds (both can only have fallen),
-/// and reads a row afresh only when the mass bound would not let a row it
-/// reaches be skipped. The result is that of a scan from scratch (a row
-/// skipped by its kept gain holds no cell that could win).
+/// and reads a row's masses afresh only when the mass bound would not let
+/// a row it reaches, and has not summed yet in the run, be skipped. The
+/// result is that of a scan from scratch (a row skipped by either bound
+/// holds no cell that could win).
 #[derive(Clone, Debug, Default)]
 pub struct FarScan {
     buf: Vec<f64>,
