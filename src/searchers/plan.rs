@@ -31,7 +31,8 @@ pub fn disc_gain(sensor: &Sensor, belief: &BeliefState, cov: &Coverage, cell: u3
     cov.gain(sensor, belief, cell)
 }
 
-/// Scratch for [`fallback_target`] and the cover walk's goal scan ([`CoverWalk`]), and the work its scans have done in
+/// Scratch for [`fallback_target`] and the cover walk's goal scan
+/// ([`CoverWalk`]), and the work its scans have done in
 /// [`crate::searchers::SLICE_WORK`]'s units (a unit is about what a
 /// simulated lookahead move costs): one per [`ROW_CELLS_PER_UNIT`] cells of
 /// the rows scanned, and one per [`BOUND_CELLS_PER_UNIT`] cells of the
@@ -97,6 +98,17 @@ impl FarScan {
 /// Runs of far-goal scans begun so far in the process.
 static RUNS: AtomicU64 = AtomicU64::new(0);
 
+/// The rows of an `n`-wide lattice nearest `py` first: py, py + 1, py − 1,
+/// py + 2, …, each once (the order both goal scans visit rows in, so a
+/// nearer row's value is found before farther rows are bounded by it).
+fn rows_nearest(n: u32, py: u32) -> impl Iterator<Item = u32> {
+    let (n, py) = (n as i32, py as i32);
+    (0..n).map(move |k| {
+        let step = (k + 1) / 2;
+        wrap_once(n, py + if k % 2 == 1 { step } else { -step }) as u32
+    })
+}
+
 /// Cells of the bounds' pass per work unit: a compare a cell, eight at a
 /// time (timed with `torus-search bench --moves`' plan slices).
 pub const BOUND_CELLS_PER_UNIT: u64 = 32;
@@ -142,10 +154,9 @@ pub fn fallback_target(
     for (x, d) in (0..n).zip(cols.iter_mut()) {
         *d = torus.axis_dist(px, x) as f64;
     }
-    // Rows a disc or the search's order reaches lie within n of the
-    // lattice: one correction wraps them, without a division (a scan
-    // wraps every row's disc rows, and divisions were most of its cost
-    // once it kept its rows' maxima).
+    // Rows a disc reaches lie within n of the lattice: one correction
+    // wraps them, without a division (a scan wraps every row's disc rows,
+    // and divisions were most of its cost once it kept its rows' maxima).
     let wrap = |v: i32| wrap_once(n as i32, v) as usize;
     // Summed in the sensor's order from +0.0, as `gains_row` sums: with
     // every row read at this scan, bit for bit the bound of a scan from
@@ -165,10 +176,7 @@ pub fn fallback_target(
     let skip = |top: f64, best: Option<(u32, f64)>| {
         best.is_some_and(|(_, b)| top < b) || beat.is_some_and(|f| top <= f)
     };
-    // Rows by distance from `py`: py, py + 1, py − 1, py + 2, …
-    for k in 0..n {
-        let step = (k as i32 + 1) / 2;
-        let y = wrap(py as i32 + if k % 2 == 1 { step } else { -step }) as u32;
+    for y in rows_nearest(n, py) {
         let dy = torus.axis_dist(py, y) as f64 + 1.0;
         // No value in the row exceeds its largest gain ÷ dy: the gain kept
         // from the row's last sum in this run bounds it, and so does the
@@ -328,14 +336,7 @@ fn cell_goal(
     let (px, py) = torus.xy(pos);
     let stamp = scan.begin(belief, cov, nu, run);
     let mut best: Option<(u32, f64)> = None;
-    for k in 0..n {
-        // Rows py, py + 1, py − 1, py + 2, …, each once.
-        let step = k.div_ceil(2);
-        let y = if k % 2 == 1 {
-            (py + step) % n
-        } else {
-            (py + n - step) % n
-        };
+    for y in rows_nearest(n, py) {
         let (yu, dy) = (y as usize, torus.axis_dist(py, y));
         let beaten = |m: f64| best.is_some_and(|(_, b)| m / (dy as f64 + 1.0) < b);
         if beaten(scan.rows[yu]) {
@@ -452,12 +453,6 @@ mod tests {
         best
     }
 
-    /// The pruned scan returns the full scan's cell and value, bit for bit,
-    /// and with `beat` the same cell exactly when its value exceeds `beat`:
-    /// on priors full of ties (uniform, painted levels 0–3), where skipping a
-    /// row whose bound only equals the best would lose a lower-index tie,
-    /// and on Gaussians, over random searched sets, simulations and
-    /// positions, at two sensor radii and on odd and even lattices.
     #[test]
     fn the_pruned_cell_goal_is_the_full_scan_of_cells() {
         // Every cell in index order, as the goal was found before rows were
@@ -529,6 +524,12 @@ mod tests {
         assert!(kept_work * 10 < work * 9, "{kept_work} against {work}");
     }
 
+    /// The pruned scan returns the full scan's cell and value, bit for bit,
+    /// and with `beat` the same cell exactly when its value exceeds `beat`:
+    /// on priors full of ties (uniform, painted levels 0–3), where skipping a
+    /// row whose bound only equals the best would lose a lower-index tie,
+    /// and on Gaussians, over random searched sets, simulations and
+    /// positions, at two sensor radii and on odd and even lattices.
     #[test]
     fn the_pruned_far_goal_scan_is_the_full_scan() {
         // A second scratch is given the run each scan continues (the mass
