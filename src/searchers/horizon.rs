@@ -363,9 +363,8 @@ pub struct Completion {
     mass_left: f64,
     enough: f64,
     /// The mass left at or below which each move is the greedy one, and
-    /// the depth-1 lookahead that makes it (from [`Completion::greedy_below`]).
-    greedy: f64,
-    step: Option<Lookahead>,
+    /// the depth-1 lookahead that makes it ([`Completion::greedy_below`]).
+    greedy: Option<(f64, Lookahead)>,
     /// This completion's number in the process: its far-goal scans, move
     /// after move, tell the scan that only cells were covered since the
     /// last ([`FarScan`]).
@@ -406,8 +405,7 @@ impl Completion {
             far,
             mass_left: belief.remaining(),
             enough: f64::NEG_INFINITY,
-            greedy: f64::NEG_INFINITY,
-            step: None,
+            greedy: None,
             run: FarScan::new_run(),
         }
     }
@@ -431,8 +429,7 @@ impl Completion {
     /// a move (the belief MCTS's first plan).
     pub fn greedy_below(self, mass: f64) -> Completion {
         Completion {
-            greedy: mass,
-            step: Some(Lookahead::new(1)),
+            greedy: Some((mass, Lookahead::new(1))),
             ..self
         }
     }
@@ -458,8 +455,8 @@ impl Completion {
             && self.made < self.cap
             && work < max_work
         {
-            let (look, far) = match &mut self.step {
-                Some(step) if self.mass_left <= self.greedy => (step, FarGoal::Stuck),
+            let (look, far) = match &mut self.greedy {
+                Some((thin, step)) if self.mass_left <= *thin => (step, FarGoal::Stuck),
                 _ => (&mut *look, self.far),
             };
             let (m, _, _) = decide(
