@@ -251,12 +251,13 @@ fn plan_maker(belief: &BeliefState, root: u32, cap: u32) -> Completion {
 
 /// The completion from `root` that a new plan is made by
 /// ([`plan_maker`]), up to `cap` moves. It ends once a tenth of
-/// [`PLAN_END`] of the posterior is left. A [`follow_plan`] walk never asks for a plan cell past that: by
-/// each plan cell it passes it has covered at least what the plan had,
-/// and it stops at `PLAN_END` (the factor of ten is far more than the two
-/// running sums' rounding). So the plan walked is the one the whole
-/// completion would give, and the thinnest of its tail (at N = 40,
-/// σ = 2.5, 59 of its 840 moves) is never made.
+/// [`PLAN_END`] of the posterior is left. A [`follow_plan`] walk never
+/// asks for a plan cell past that: by each plan cell it passes it has
+/// covered at least what the plan had, and it stops at `PLAN_END` (the
+/// factor of ten is far more than the two running sums' rounding). So the
+/// plan walked is the one the whole completion would give, and the
+/// thinnest of its tail (at N = 40, σ = 2.5, 59 of its 840 moves) is never
+/// made.
 fn first_plan(belief: &BeliefState, root: u32, cap: u32) -> Completion {
     plan_maker(belief, root, cap).ending_at(belief.remaining() * PLAN_END / 10.0)
 }
