@@ -219,53 +219,68 @@ impl Coverage {
     /// When row `y` is off the lattice.
     #[inline]
     pub fn live_max_row(&self, belief: &BeliefState, n: usize, y: usize) -> f64 {
-        // Eight running maxima: a third faster than one at N = 256.
-        self.live_max_in::<8>(belief, y * n..(y + 1) * n)
+        self.live_max_in(belief, y * n..(y + 1) * n)
     }
 
-    /// The largest planning mass of a cell neither searched nor simulated
-    /// within `half` columns and rows of `cell` (the whole lattice when that
-    /// box would wrap onto itself); 0 when there is none.
-    pub fn live_max_near(&self, belief: &BeliefState, n: u32, cell: u32, half: u32) -> f64 {
-        let (mass, searched) = (belief.plan_mass(), belief.searched());
-        let live = |i: usize| live(self.marked[i], searched[i], mass[i]);
-        let mut best = 0.0f64;
+    /// The largest planning mass of a live cell (neither searched nor
+    /// simulated) at each ℓ1 distance `d` from `cell`, into `out[d]`, over
+    /// the box of `half` columns and rows around it (`out` is `2·half + 1`
+    /// long; 0 where there is none). When that box would wrap onto itself,
+    /// every entry is the largest over the whole lattice instead, which
+    /// bounds them all.
+    ///
+    /// # Panics
+    /// When `out` is not `2·half + 1` long.
+    pub fn live_max_rings(
+        &self,
+        belief: &BeliefState,
+        n: u32,
+        cell: u32,
+        half: u32,
+        out: &mut [f64],
+    ) {
+        assert_eq!(out.len(), 2 * half as usize + 1, "one entry per distance");
         if 2 * half + 1 >= n {
-            for i in 0..self.marked.len() {
-                let v = live(i);
-                best = if v > best { v } else { best };
-            }
-            return best;
+            out.fill(self.live_max_in(belief, 0..self.marked.len()));
+            return;
         }
+        out.fill(0.0);
+        let (mass, searched) = (belief.plan_mass(), belief.searched());
         let (n, half) = (n as usize, half as usize);
         let (x, y) = (cell as usize % n, cell as usize / n);
         // Each row's columns x − half ..= x + half as at most two unwrapped
-        // stretches: no division a cell (a max is exact in any order).
+        // stretches: no division a cell.
         let (width, lo) = (2 * half + 1, (x + n - half) % n);
         let first = width.min(n - lo);
         for k in 0..width {
             let row = (y + n - half + k) % n * n;
-            for span in [row + lo..row + lo + first, row..row + width - first] {
-                let v = self.live_max_in::<4>(belief, span);
-                best = if v > best { v } else { best };
+            let ady = k.abs_diff(half);
+            let stretches = [(row + lo, 0, first), (row, first, width)];
+            for (start, from, to) in stretches {
+                for dx in from..to {
+                    let i = start + dx - from;
+                    let v = live(self.marked[i], searched[i], mass[i]);
+                    let d = &mut out[ady + dx.abs_diff(half)];
+                    *d = if v > *d { v } else { *d };
+                }
             }
         }
-        best
     }
 
     /// The largest live planning mass among the cells `span`; 0 when none.
-    /// It keeps `L` running maxima, so a compare need not wait for the one
-    /// before it (a max is exact in any order).
+    /// It keeps eight running maxima, so a compare need not wait for the
+    /// one before it (a max is exact in any order): a third faster than one
+    /// over a row at N = 256.
     #[inline]
-    fn live_max_in<const L: usize>(&self, belief: &BeliefState, span: Range<usize>) -> f64 {
+    fn live_max_in(&self, belief: &BeliefState, span: Range<usize>) -> f64 {
         let (mass, marked, searched) = (
             &belief.plan_mass()[span.clone()],
             &self.marked[span.clone()],
             &belief.searched()[span],
         );
-        let mut lanes = [0.0f64; L];
-        let whole = mass.len() / L * L;
-        for i in (0..whole).step_by(L) {
+        let mut lanes = [0.0f64; 8];
+        let whole = mass.len() / 8 * 8;
+        for i in (0..whole).step_by(8) {
             for (j, l) in lanes.iter_mut().enumerate() {
                 let v = live(marked[i + j], searched[i + j], mass[i + j]);
                 *l = if v > *l { v } else { *l };
@@ -394,12 +409,15 @@ mod tests {
     }
 
     #[test]
-    fn the_largest_live_mass_near_a_cell_is_the_box_scanned_cell_by_cell() {
+    fn the_largest_live_masses_around_a_cell_are_the_box_scanned_cell_by_cell() {
         // Every cell, boxes from the cell alone to wider than the lattice,
         // the box wrapping at every edge; against the cells whose column and
-        // row lie within `half` of the cell's on the torus. A box one
-        // column short on the left (tried) fails it.
+        // row lie within `half` of the cell's on the torus, the largest live
+        // mass at each ℓ1 distance (each the whole lattice's when the box
+        // wraps onto itself). A box one column short on the left, and rings
+        // counted one farther out (tried), fail it.
         let mut rng = crate::rng::stream(9, 0);
+        let mut rings = Vec::new();
         for n in [3u32, 4, 7, 12] {
             let torus = Torus::new(n).unwrap();
             let sensor = Sensor::new(&torus, 1.0).unwrap();
@@ -412,19 +430,30 @@ mod tests {
                 for cell in 0..n * n {
                     let (x, y) = torus.xy(cell);
                     for half in 0..=n / 2 + 1 {
-                        let want = (0..n * n)
-                            .filter(|&c| {
+                        let box_wraps = 2 * half + 1 >= n;
+                        let live = (0..n * n).filter(|&c| !cov.covered(&belief, c));
+                        let in_box = live.filter(|&c| {
+                            let (cx, cy) = torus.xy(c);
+                            box_wraps
+                                || (torus.axis_dist(x, cx) <= half
+                                    && torus.axis_dist(y, cy) <= half)
+                        });
+                        let mass = |c: u32| belief.plan_mass()[c as usize];
+                        rings.resize(2 * half as usize + 1, f64::NAN);
+                        cov.live_max_rings(&belief, n, cell, half, &mut rings);
+                        for (d, &got) in rings.iter().enumerate() {
+                            let at_d = in_box.clone().filter(|&c| {
                                 let (cx, cy) = torus.xy(c);
-                                let box_wraps = 2 * half + 1 >= n;
                                 box_wraps
-                                    || (torus.axis_dist(x, cx) <= half
-                                        && torus.axis_dist(y, cy) <= half)
-                            })
-                            .filter(|&c| !cov.covered(&belief, c))
-                            .map(|c| belief.plan_mass()[c as usize])
-                            .fold(0.0, f64::max);
-                        let got = cov.live_max_near(&belief, n, cell, half);
-                        assert_eq!(got, want, "n {n} round {round} cell {cell} half {half}");
+                                    || (torus.axis_dist(x, cx) + torus.axis_dist(y, cy)) as usize
+                                        == d
+                            });
+                            let want = at_d.map(mass).fold(0.0, f64::max);
+                            assert_eq!(
+                                got, want,
+                                "n {n} round {round} cell {cell} half {half} d {d}"
+                            );
+                        }
                     }
                 }
                 belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));

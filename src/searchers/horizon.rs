@@ -60,9 +60,13 @@ pub struct Lookahead {
     best_seq: Vec<u32>,
     best: f64,
     best_gain: f64,
-    /// A bound on what one move may add, with room for rounding: the
-    /// largest uncovered mass within reach times the largest front.
-    step_bound: f64,
+    /// `tail[k]`: a bound on what moves `k + 1 ..= h` may add to a
+    /// sequence's score, with room for rounding. Move `j` adds at most its
+    /// front of cells, each within ℓ1 distance `j` + the disc's of the
+    /// searcher, times the move's weight `h − j + 1`.
+    tail: Vec<f64>,
+    /// Scratch: the largest live mass at each ℓ1 distance from the searcher.
+    rings: Vec<f64>,
     /// Simulated moves made since the work was last taken.
     work: u64,
     /// Scratch for the fallback scan, with its work.
@@ -125,7 +129,8 @@ impl Lookahead {
             best_seq: vec![0; h as usize],
             best: 0.0,
             best_gain: 0.0,
-            step_bound: 0.0,
+            tail: vec![0.0; h as usize + 1],
+            rings: Vec::new(),
             work: 0,
             scan: FarScan::default(),
         }
@@ -172,8 +177,28 @@ impl Lookahead {
         // Every cell a sequence can cover lies within h + reach rows and
         // columns of `pos`. The margin covers the rounding of the sums the
         // bound stands for (non-negative terms, a few dozen roundings).
-        let near = cov.live_max_near(belief, torus.n(), pos, self.h + sensor.reach());
-        self.step_bound = near * sensor.front_len() as f64 * (1.0 + 1e-9);
+        let half = self.h + sensor.reach();
+        self.rings.resize(2 * half as usize + 1, 0.0);
+        cov.live_max_rings(belief, torus.n(), pos, half, &mut self.rings);
+        let reach1 = sensor
+            .offsets()
+            .iter()
+            .map(|&(dx, dy)| (dx.unsigned_abs() + dy.unsigned_abs()) as usize)
+            .max()
+            .unwrap_or(0);
+        let front = sensor.front_len() as f64 * (1.0 + 1e-9);
+        let (h, mut upto, mut most) = (self.h as usize, 0, 0.0f64);
+        for j in 1..=h {
+            while upto < self.rings.len() && upto <= j + reach1 {
+                most = most.max(self.rings[upto]);
+                upto += 1;
+            }
+            self.tail[j - 1] = (h - j + 1) as f64 * front * most;
+        }
+        self.tail[h] = 0.0;
+        for k in (0..h).rev() {
+            self.tail[k] += self.tail[k + 1];
+        }
         self.work += SEARCH_WORK;
         for m in order(last, None) {
             // A later first move is taken only when strictly better, so
@@ -224,8 +249,7 @@ impl Lookahead {
         // Moves k.. weigh h − k, …, 1: a subtree that cannot beat the best
         // sequence found is left out, which leaves the result as it was (a
         // later sequence only replaces the best when strictly better).
-        let left = (self.h - k) as f64;
-        if acc + self.step_bound * left * (left + 1.0) / 2.0 <= self.best {
+        if acc + self.tail[k as usize] <= self.best {
             return;
         }
         if k == self.h {
