@@ -174,9 +174,12 @@ impl Lookahead {
         // covered disc it came from; from `pos` that holds when its disc
         // is covered (it is wherever a searcher has stood).
         let stood = cov.disc_covered(sensor, belief, pos);
-        // Every cell a sequence can cover lies within h + reach rows and
-        // columns of `pos`. The margin covers the rounding of the sums the
-        // bound stands for (non-negative terms, a few dozen roundings).
+        // Move j's new cells lie within ℓ1 distance j + the disc's ℓ1 reach
+        // of `pos` (and within h + reach rows and columns), so it adds at
+        // most its front times the heaviest live cell that near: the first
+        // moves, which weigh most, see only the cells next to `pos`. The
+        // margin covers the rounding of the sums the bound stands for
+        // (non-negative terms, a few dozen roundings).
         let half = self.h + sensor.reach();
         self.rings.resize(2 * half as usize + 1, 0.0);
         cov.live_max_rings(belief, torus.n(), pos, half, &mut self.rings);

@@ -780,7 +780,8 @@ test('phone-sized screen: no horizontal scrolling, touch-friendly controls', { t
 
 /**
  * Sends the search worker `count` usage requests, `gapMs` apart: how long
- * each answer took (ms), and the text of `selector` after each.
+ * each answer took (ms), and the text of `selector` after each (with `also`,
+ * the texts of both, read at once).
  */
 async function askWorker(page, count, gapMs, selector, also) {
   const waits = [];
