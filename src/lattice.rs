@@ -339,6 +339,17 @@ impl Sensor {
             .unwrap_or(0)
     }
 
+    /// The largest ℓ1 length of an offset within the radius (0 when the
+    /// disc is the cell alone): a cell the disc at `c` holds lies within
+    /// this many moves of `c`.
+    pub fn reach_l1(&self) -> u32 {
+        self.offsets
+            .iter()
+            .map(|&(dx, dy)| dx.unsigned_abs() + dy.unsigned_abs())
+            .max()
+            .unwrap_or(0)
+    }
+
     /// The cells within the radius of `cell`, each once.
     pub fn around(&self, cell: u32) -> impl Iterator<Item = u32> + '_ {
         disc(self.n, &self.offsets, cell)

@@ -547,13 +547,7 @@ impl BeamSearch {
 
 /// The most new cells one move can cover, and the sensor's ℓ1 reach.
 fn front_and_reach(sensor: &Sensor) -> (usize, u32) {
-    let reach = sensor
-        .offsets()
-        .iter()
-        .map(|&(dx, dy)| dx.unsigned_abs() + dy.unsigned_abs())
-        .max()
-        .unwrap_or(0);
-    (sensor.front_len().max(1), reach)
+    (sensor.front_len().max(1), sensor.reach_l1())
 }
 
 /// A lower bound on `Σ R` over the moves after reaching `q` with mass `r`

@@ -97,15 +97,14 @@ pub struct Found {
 }
 
 /// `last` first (going straight wins ties), then the others in `Move::ALL`
-/// order, never `skip`.
+/// order.
 #[inline]
-fn order(last: Option<Move>, skip: Option<Move>) -> impl Iterator<Item = Move> {
+fn order(last: Option<Move>) -> impl Iterator<Item = Move> {
     last.into_iter()
         .chain(Move::ALL.into_iter().filter(move |&m| Some(m) != last))
-        .filter(move |&m| Some(m) != skip)
 }
 
-/// [`order`]`(Some(last), Some(reverse(last)))` by `last`'s index: `last`,
+/// [`order`]`(Some(last))` without the reversal, by `last`'s index: `last`,
 /// then the two turns in `Move::ALL` order. A table, for the lookahead's
 /// inner loops.
 const ONWARD: [[Move; 3]; 4] = {
@@ -183,12 +182,7 @@ impl Lookahead {
         let half = self.h + sensor.reach();
         self.rings.resize(2 * half as usize + 1, 0.0);
         cov.live_max_rings(belief, torus.n(), pos, half, &mut self.rings);
-        let reach1 = sensor
-            .offsets()
-            .iter()
-            .map(|&(dx, dy)| (dx.unsigned_abs() + dy.unsigned_abs()) as usize)
-            .max()
-            .unwrap_or(0);
+        let reach1 = sensor.reach_l1() as usize;
         let front = sensor.front_len() as f64 * (1.0 + 1e-9);
         let (h, mut upto, mut most) = (self.h as usize, 0, 0.0f64);
         for j in 1..=h {
@@ -203,7 +197,7 @@ impl Lookahead {
             self.tail[k] += self.tail[k + 1];
         }
         self.work += SEARCH_WORK;
-        for m in order(last, None) {
+        for m in order(last) {
             // A later first move is taken only when strictly better, so
             // without its own score only what beats the best so far counts.
             self.best = match scored {
@@ -634,7 +628,7 @@ mod tests {
             return;
         }
         let w = (h - k) as f64;
-        for m in order(Some(last), Some(reverse(last))) {
+        for m in order(Some(last)).filter(|&m| m != reverse(last)) {
             let q = torus.step(pos, m);
             let cp = cov.checkpoint();
             let g = cov.cover(sensor, belief, q);
@@ -661,7 +655,7 @@ mod tests {
     #[test]
     fn the_onward_table_is_the_order_without_the_reversal() {
         for last in Move::ALL {
-            let want: Vec<Move> = order(Some(last), Some(reverse(last))).collect();
+            let want: Vec<Move> = order(Some(last)).filter(|&m| m != reverse(last)).collect();
             assert_eq!(ONWARD[last as usize].to_vec(), want, "{last:?}");
         }
     }
@@ -744,7 +738,7 @@ mod tests {
                         assert_eq!(unscored.count(), 3);
                         assert!(alone.take_work() - SEARCH_WORK <= work);
                         let mut overall: Option<(Move, f64, f64, Vec<u32>)> = None;
-                        for m in order(last, None) {
+                        for m in order(last) {
                             let q = torus.step(pos, m);
                             let cp = cov.checkpoint();
                             let g = cov.cover(&sensor, &belief, q);
