@@ -3,7 +3,9 @@
 // (no timed assertions): the workload is `bench::move_cases` — every
 // registered searcher and MCTS variant at its defaults, Gaussian prior with
 // σ = N/8, at N = 40 and N = 256 — timed for about `--seconds` each after a
-// warm-up move. Prints one JSON object and a table with wasm ÷ native.
+// warm-up move, each decision timed alone. Prints one JSON object and a
+// table: mean ms per move, median and longest decision, episodes finished
+// in the window (0: only trial 0's first moves), and wasm ÷ native.
 // Usage: node benches/moves.mjs [--seconds S] [--no-native]
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
@@ -13,24 +15,56 @@ const args = process.argv.slice(2);
 const seconds = secondsArg(args, 0.4);
 const wasm = await loadPkg();
 
-/** ms per move of `config` in wasm: one warm-up move, then single moves for `seconds` (as the CLI does). */
-function msPerMove(config) {
+/**
+ * Cost per move of `config` in wasm: one warm-up move, then single
+ * decisions (calls that make one move) for `seconds`, each timed alone and
+ * without setting up the next trial (`ready`), as the CLI does. Returns the
+ * mean ms per move, the median and longest decision, and the episodes the
+ * window finished (0: only trial 0's first moves).
+ */
+function timeMoves(config) {
   const bench = new wasm.MoveBench(config);
   const m0 = bench.run(1);
+  const e0 = bench.episodes();
+  const each = [];
   let moves = m0;
   const t0 = performance.now();
   let t = t0;
   while (t - t0 < seconds * 1000 || moves - m0 < 3) {
+    bench.ready();
+    const start = performance.now();
     moves = bench.run(1);
     t = performance.now();
+    each.push(t - start);
   }
+  const episodes = bench.episodes() - e0;
   bench.free();
-  return (t - t0) / (moves - m0);
+  const total = each.reduce((a, b) => a + b, 0);
+  each.sort((a, b) => a - b);
+  return {
+    wasm_ms_per_move: total / (moves - m0),
+    wasm_median_ms: each[each.length >> 1],
+    wasm_longest_ms: each[each.length - 1],
+    wasm_moves: moves - m0,
+    wasm_episodes: episodes,
+  };
 }
 
+// V8 compiles wasm in tiers, and a function's first calls run before its
+// optimised code is ready: without this pass the first case's longest
+// decisions were 2-3 times its others. One decision of every case at both
+// sizes runs every searcher's code once; the kept plans it makes are the
+// ones the timed pass would make first anyway.
+for (const n of [40, 256]) {
+  for (const { config } of wasm.benchMoveCases(n)) {
+    const bench = new wasm.MoveBench(config);
+    bench.run(2);
+    bench.free();
+  }
+}
 const rows = [];
 for (const n of [40, 256]) {
-  for (const { label, config } of wasm.benchMoveCases(n)) rows.push({ searcher: label, n, wasm_ms_per_move: msPerMove(config) });
+  for (const { label, config } of wasm.benchMoveCases(n)) rows.push({ searcher: label, n, ...timeMoves(config) });
 }
 if (!args.includes('--no-native')) {
   execFileSync('cargo', ['build', '--release', '--quiet'], { cwd: ROOT, stdio: 'inherit' });
@@ -40,13 +74,21 @@ if (!args.includes('--no-native')) {
     const m = native.moves.find((x) => x.searcher === r.searcher && x.n === r.n);
     if (!m) continue;
     r.native_ms_per_move = m.ms_per_move;
+    r.native_median_ms = m.median_ms;
+    r.native_longest_ms = m.longest_ms;
     r.wasm_over_native_time = r.wasm_ms_per_move / m.ms_per_move;
   }
 }
 console.log(JSON.stringify({ node: process.version, seconds, prior: 'gaussian, sigma = N/8', rows }, null, 1));
 const pad = (s, w) => String(s).padStart(w);
-console.error(`${'searcher'.padEnd(16)}${pad('N', 6)}${pad('wasm ms', 12)}${pad('native ms', 12)}${pad('wasm/native', 13)}`);
+const f = (v, d = 4) => (v === undefined ? '–' : v.toFixed(d));
+console.error(
+  `${'searcher'.padEnd(16)}${pad('N', 6)}${pad('wasm ms', 12)}${pad('median', 10)}${pad('longest', 10)}${pad('episodes', 10)}` +
+    `${pad('native ms', 12)}${pad('median', 10)}${pad('longest', 10)}${pad('wasm/native', 13)}`,
+);
 for (const r of rows) {
-  const f = (v, d = 4) => (v === undefined ? '–' : v.toFixed(d));
-  console.error(`${r.searcher.padEnd(16)}${pad(r.n, 6)}${pad(f(r.wasm_ms_per_move), 12)}${pad(f(r.native_ms_per_move), 12)}${pad(f(r.wasm_over_native_time, 2), 13)}`);
+  console.error(
+    `${r.searcher.padEnd(16)}${pad(r.n, 6)}${pad(f(r.wasm_ms_per_move), 12)}${pad(f(r.wasm_median_ms), 10)}${pad(f(r.wasm_longest_ms, 3), 10)}${pad(r.wasm_episodes, 10)}` +
+      `${pad(f(r.native_ms_per_move), 12)}${pad(f(r.native_median_ms), 10)}${pad(f(r.native_longest_ms, 3), 10)}${pad(f(r.wasm_over_native_time, 2), 13)}`,
+  );
 }

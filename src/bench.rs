@@ -166,6 +166,8 @@ pub struct MoveRunner {
     cfg: Config,
     trial: u64,
     episode: Episode,
+    /// The episode has ended; the next decision starts the next trial.
+    ended: bool,
     /// Real moves made so far.
     pub moves: u64,
     /// Episodes finished so far.
@@ -183,27 +185,43 @@ impl MoveRunner {
             cfg: cfg.clone(),
             trial: 0,
             episode: Episode::trial(cfg, 0)?,
+            ended: false,
             moves: 0,
             episodes: 0,
         })
     }
 
-    /// Makes `moves` more real moves (starting the next trial whenever one
-    /// ends).
+    /// Starts the next trial if the last decision ended one, so that a
+    /// timer can leave setting up an episode (the prior, the tables) out of
+    /// the decision it times; [`MoveRunner::run`] does it itself otherwise.
     ///
     /// # Errors
     /// Only if a new trial's config were invalid (it was checked in `new`).
+    pub fn ready(&mut self) -> Result<(), ConfigError> {
+        if self.ended {
+            self.trial += 1;
+            self.episode = Episode::trial(&self.cfg, self.trial)?;
+            self.ended = false;
+        }
+        Ok(())
+    }
+
+    /// Makes `moves` more decisions, each one real move unless the trial
+    /// ends first (starting the next trial whenever one has ended).
+    ///
+    /// # Errors
+    /// As [`MoveRunner::ready`].
     pub fn run(&mut self, moves: u64) -> Result<(), ConfigError> {
         // Counted in attempts, so a trial detected at its start (no move)
         // cannot keep this running for ever.
         for _ in 0..moves {
+            self.ready()?;
             let before = self.episode.steps();
             let status = self.episode.step_move();
             self.moves += u64::from(self.episode.steps() - before);
             if status != crate::episode::Status::Running {
                 self.episodes += 1;
-                self.trial += 1;
-                self.episode = Episode::trial(&self.cfg, self.trial)?;
+                self.ended = true;
             }
         }
         Ok(())
@@ -250,8 +268,17 @@ mod tests {
             expect += u64::from(Episode::trial(&cfg, i).unwrap().run().steps);
         }
         // The moves of the finished trials, plus those of the one under way.
-        expect += u64::from(r.episode.steps());
+        if !r.ended {
+            expect += u64::from(r.episode.steps());
+        }
         assert_eq!(r.moves, expect);
         assert!(r.episodes >= 2, "trials rolled over: {}", r.episodes);
+        // Starting each next trial apart, as a timer does, makes the same moves.
+        let mut apart = MoveRunner::new(&cfg).unwrap();
+        for _ in 0..300 {
+            apart.ready().unwrap();
+            apart.run(1).unwrap();
+        }
+        assert_eq!((apart.moves, apart.episodes), (r.moves, r.episodes));
     }
 }

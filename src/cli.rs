@@ -933,7 +933,11 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
 }
 
 /// Times real moves of every searcher at N = 40 and N = 256: each for
-/// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move.
+/// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move,
+/// trial 0 onwards. Reports the mean, the median and the longest decision
+/// (a call that makes one move; setting up a trial is left out), and how
+/// many episodes the window finished: 0 means only the first moves of
+/// trial 0 were timed.
 fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     use torus_search::bench::{move_cases, MoveRunner};
     // A planner that makes its plan in slices: each slice timed alone (one
@@ -980,29 +984,48 @@ fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     let mut rows = Vec::new();
     if !json {
         out!(
-            "\n{:<16}{:>6}{:>14}{:>10}",
+            "\n{:<16}{:>6}{:>14}{:>12}{:>12}{:>10}{:>10}",
             "searcher",
             "N",
             "ms per move",
-            "moves"
+            "median ms",
+            "longest ms",
+            "moves",
+            "episodes"
         );
     }
     for n in [40, 256] {
         for (label, cfg) in move_cases(n) {
             let mut r = MoveRunner::new(&cfg).map_err(usage)?;
             r.run(1).map_err(usage)?;
-            let (moves0, t) = (r.moves, Instant::now());
+            let (moves0, episodes0) = (r.moves, r.episodes);
+            // Each decision is timed alone, without setting up the next
+            // trial (`ready`), which the page does once per episode.
+            let mut each = Vec::new();
+            let t = Instant::now();
             while t.elapsed().as_secs_f64() < 0.4 * scale || r.moves - moves0 < 3 {
+                r.ready().map_err(usage)?;
+                let start = Instant::now();
                 r.run(1).map_err(usage)?;
+                each.push(1e3 * start.elapsed().as_secs_f64());
             }
             let moves = r.moves - moves0;
-            let ms = 1e3 * t.elapsed().as_secs_f64() / moves.max(1) as f64;
+            let episodes = r.episodes - episodes0;
+            let ms = each.iter().sum::<f64>() / moves.max(1) as f64;
+            each.sort_by(f64::total_cmp);
+            let (median, longest) = (each[each.len() / 2], each[each.len() - 1]);
             if !json {
-                out!("{label:<16}{n:>6}{ms:>14.4}{moves:>10}");
+                out!("{label:<16}{n:>6}{ms:>14.4}{median:>12.4}{longest:>12.4}{moves:>10}{episodes:>10}");
             }
-            rows.push(
-                serde_json::json!({ "searcher": label, "n": n, "ms_per_move": ms, "moves": moves }),
-            );
+            rows.push(serde_json::json!({
+                "searcher": label,
+                "n": n,
+                "ms_per_move": ms,
+                "median_ms": median,
+                "longest_ms": longest,
+                "moves": moves,
+                "episodes": episodes,
+            }));
         }
     }
     if json {

@@ -534,6 +534,20 @@ impl MoveBench {
         self.runner.run(moves as u64).map_err(err)?;
         Ok(self.runner.moves as f64)
     }
+
+    /// Starts the next trial if the last call ended one, so that timing
+    /// `run(1)` after it leaves setting up an episode out.
+    ///
+    /// # Errors
+    /// Only if a new trial's config were invalid (it was checked in `new`).
+    pub fn ready(&mut self) -> Result<(), JsError> {
+        self.runner.ready().map_err(err)
+    }
+
+    /// Episodes finished so far.
+    pub fn episodes(&self) -> f64 {
+        self.runner.episodes as f64
+    }
 }
 
 /// One episode, or two racing on their own configs, advanced from JS and

@@ -367,6 +367,28 @@ fn bench_json_names_what_it_measures() {
 }
 
 #[test]
+fn bench_moves_reports_each_searchers_mean_median_and_longest_decision() {
+    let v = json(&["bench", "--moves", "--json", "--scale", "0.002"]);
+    let rows = v["moves"].as_array().unwrap();
+    for n in [40, 256] {
+        for (label, _) in torus_search::bench::move_cases(n) {
+            let row = rows
+                .iter()
+                .find(|r| r["searcher"] == label.as_str() && r["n"] == n)
+                .unwrap_or_else(|| panic!("{label} at N = {n} missing from {v}"));
+            let f = |k: &str| row[k].as_f64().unwrap_or_else(|| panic!("{k} in {row}"));
+            let (mean, median, longest) = (f("ms_per_move"), f("median_ms"), f("longest_ms"));
+            assert!(row["moves"].as_u64().is_some_and(|m| m >= 3), "{row}");
+            assert!(row["episodes"].as_u64().is_some(), "{row}");
+            assert!(mean > 0.0 && median > 0.0, "{row}");
+            // The longest decision bounds the others, and so their mean
+            // (a decision makes at most one move).
+            assert!(median <= longest && mean <= longest * 1.0001, "{row}");
+        }
+    }
+}
+
+#[test]
 fn bench_times_a_window_of_an_episode() {
     let dir = std::env::temp_dir().join(format!("torus-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

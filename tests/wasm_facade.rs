@@ -301,6 +301,26 @@ fn benchmark_workloads() {
         .map_err(JsValue::from)
         .unwrap();
     assert!(r[0] >= 50.0 && r[1] >= 4.0, "{r:?}");
+    // The move workload, with each next trial started apart (as
+    // benches/moves.mjs times it), makes the core runner's moves.
+    let json = r#"{"n":6,"sigma":1,"searcher":"rw"}"#;
+    let mut b = facade::MoveBench::new(js(json))
+        .map_err(JsValue::from)
+        .unwrap();
+    let mut moves = 0.0;
+    for _ in 0..300 {
+        b.ready().map_err(JsValue::from).unwrap();
+        moves = b.run(1.0).map_err(JsValue::from).unwrap();
+    }
+    let mut core =
+        torus_search::bench::MoveRunner::new(&serde_json::from_str(json).unwrap()).unwrap();
+    core.run(300).unwrap();
+    assert_eq!(
+        (moves, b.episodes()),
+        (core.moves as f64, core.episodes as f64)
+    );
+    assert!(b.episodes() >= 2.0);
+    assert!(b.run(0.0).is_err());
 }
 
 #[wasm_bindgen_test]
