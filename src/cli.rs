@@ -278,7 +278,7 @@ fn bench_command() -> Command {
                 .long("moves")
                 .action(ArgAction::SetTrue)
                 .conflicts_with("episode")
-                .help("instead of the suite: the cost per real move of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8, and the time of each slice of work done in slices (the beam and spiral plans, the belief MCTS's plan, rollout improvement's decisions)"),
+                .help("instead of the suite: the cost per real move (mean, median and longest decision) of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8, and the time of each slice of work done in slices (the beam and spiral plans, the belief MCTS's plan, rollout improvement's decisions)"),
         )
         .arg(
             Arg::new("episode")
