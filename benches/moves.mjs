@@ -6,13 +6,16 @@
 // warm-up move, each decision timed alone. Prints one JSON object and a
 // table: mean ms per move, median and longest decision, episodes finished
 // in the window (0: only trial 0's first moves), and wasm ÷ native.
-// Usage: node benches/moves.mjs [--seconds S] [--no-native]
+// With --whole, every decision of trial 0 to its end (the first, which
+// makes a planner's plan, included) instead of --seconds of moves.
+// Usage: node benches/moves.mjs [--seconds S | --whole] [--no-native]
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
 import { ROOT, loadPkg, secondsArg } from './wasm-pkg.mjs';
 
 const args = process.argv.slice(2);
 const seconds = secondsArg(args, 0.4);
+const whole = args.includes('--whole');
 const wasm = await loadPkg();
 
 /**
@@ -24,13 +27,14 @@ const wasm = await loadPkg();
  */
 function timeMoves(config) {
   const bench = new wasm.MoveBench(config);
-  const m0 = bench.run(1);
+  const m0 = whole ? 0 : bench.run(1);
   const e0 = bench.episodes();
   const each = [];
   let moves = m0;
   const t0 = performance.now();
   let t = t0;
-  while (t - t0 < seconds * 1000 || moves - m0 < 3) {
+  const more = () => (whole ? bench.episodes() === 0 : t - t0 < seconds * 1000 || moves - m0 < 3);
+  while (more()) {
     bench.ready();
     const start = performance.now();
     moves = bench.run(1);
@@ -52,15 +56,13 @@ function timeMoves(config) {
 
 // V8 compiles wasm in tiers, and a function's first calls run before its
 // optimised code is ready: without this pass the first case's longest
-// decisions were 2-3 times its others. One decision of every case at both
-// sizes runs every searcher's code once; the kept plans it makes are the
-// ones the timed pass would make first anyway.
-for (const n of [40, 256]) {
-  for (const { config } of wasm.benchMoveCases(n)) {
-    const bench = new wasm.MoveBench(config);
-    bench.run(2);
-    bench.free();
-  }
+// decisions were 2-3 times its others. Two decisions of every case run
+// every searcher's code; on a lattice of another size, so that the plans
+// the belief MCTS keeps for the process are not the timed cases'.
+for (const { config } of wasm.benchMoveCases(24)) {
+  const bench = new wasm.MoveBench(config);
+  bench.run(2);
+  bench.free();
 }
 const rows = [];
 for (const n of [40, 256]) {
@@ -69,7 +71,8 @@ for (const n of [40, 256]) {
 if (!args.includes('--no-native')) {
   execFileSync('cargo', ['build', '--release', '--quiet'], { cwd: ROOT, stdio: 'inherit' });
   const bin = path.join(ROOT, 'target/release/torus-search');
-  const native = JSON.parse(execFileSync(bin, ['bench', '--moves', '--json', '--scale', String(seconds / 0.4)], { encoding: 'utf8' }));
+  const flags = ['bench', '--moves', '--json', '--scale', String(seconds / 0.4), ...(whole ? ['--whole'] : [])];
+  const native = JSON.parse(execFileSync(bin, flags, { encoding: 'utf8' }));
   for (const r of rows) {
     const m = native.moves.find((x) => x.searcher === r.searcher && x.n === r.n);
     if (!m) continue;
@@ -79,7 +82,7 @@ if (!args.includes('--no-native')) {
     r.wasm_over_native_time = r.wasm_ms_per_move / m.ms_per_move;
   }
 }
-console.log(JSON.stringify({ node: process.version, seconds, prior: 'gaussian, sigma = N/8', rows }, null, 1));
+console.log(JSON.stringify({ node: process.version, seconds, whole_trial: whole, prior: 'gaussian, sigma = N/8', rows }, null, 1));
 const pad = (s, w) => String(s).padStart(w);
 const f = (v, d = 4) => (v === undefined ? '–' : v.toFixed(d));
 console.error(

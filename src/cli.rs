@@ -281,6 +281,13 @@ fn bench_command() -> Command {
                 .help("instead of the suite: the cost per real move (mean, median and longest decision) of every searcher (and MCTS variant) at N = 40 and N = 256, Gaussian prior with sigma = N/8, and the time of each slice of work done in slices (the beam and spiral plans, the belief MCTS's plan, rollout improvement's decisions)"),
         )
         .arg(
+            Arg::new("whole")
+                .long("whole")
+                .action(ArgAction::SetTrue)
+                .requires("moves")
+                .help("with --moves: time every decision of trial 0, to its end, instead of about 0.4 s of moves (minutes at N = 256)"),
+        )
+        .arg(
             Arg::new("episode")
                 .long("episode")
                 .value_name("FILE")
@@ -869,7 +876,7 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
             })?,
     };
     if m.get_flag("moves") {
-        return bench_moves(scale, json);
+        return bench_moves(scale, m.get_flag("whole"), json);
     }
     use torus_search::bench::{mcts_loops, rollout_steps};
     let mut out = serde_json::Map::new();
@@ -934,18 +941,19 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
 
 /// Times real moves of every searcher at N = 40 and N = 256: each for
 /// about `0.4 · scale` seconds (at least 3 moves) after one warm-up move,
-/// trial 0 onwards. Reports the mean, the median and the longest decision
-/// (a call that makes one move; setting up a trial is left out), and how
-/// many episodes the window finished: 0 means only the first moves of
-/// trial 0 were timed.
-fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
+/// trial 0 onwards, or with `whole` every move of trial 0 (the first
+/// included). Reports the mean, the median and the longest decision (a call
+/// that makes one move; setting up a trial is left out), and how many
+/// episodes the window finished: 0 means only the first moves of trial 0
+/// were timed.
+fn bench_moves(scale: f64, whole: bool, json: bool) -> Result<(), UsageError> {
     use torus_search::bench::{move_cases, MoveRunner};
     // A planner that makes its plan in slices: each slice timed alone (one
     // call of the page's worker makes up to `PLAN_CALL_SLICES` of them),
     // over trial 0's plan. First, before the moves below keep that plan for
-    // the process.
+    // the process; not with `whole`, whose trial 0 makes its plans itself.
     let mut slices = Vec::new();
-    if !json {
+    if !json && !whole {
         out!(
             "{:<16}{:>6}{:>10}{:>14}{:>14}",
             "plan slices",
@@ -955,7 +963,7 @@ fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
             "longest ms"
         );
     }
-    for n in [40, 256] {
+    for n in if whole { vec![] } else { vec![40, 256] } {
         for (label, cfg) in move_cases(n) {
             let mut ep = torus_search::episode::Episode::trial(&cfg, 0).map_err(usage)?;
             let mut ms = Vec::new();
@@ -997,13 +1005,22 @@ fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     for n in [40, 256] {
         for (label, cfg) in move_cases(n) {
             let mut r = MoveRunner::new(&cfg).map_err(usage)?;
-            r.run(1).map_err(usage)?;
+            if !whole {
+                r.run(1).map_err(usage)?;
+            }
             let (moves0, episodes0) = (r.moves, r.episodes);
             // Each decision is timed alone, without setting up the next
             // trial (`ready`), which the page does once per episode.
             let mut each = Vec::new();
             let t = Instant::now();
-            while t.elapsed().as_secs_f64() < 0.4 * scale || r.moves - moves0 < 3 {
+            let more = |r: &MoveRunner| {
+                if whole {
+                    r.episodes == 0
+                } else {
+                    t.elapsed().as_secs_f64() < 0.4 * scale || r.moves - moves0 < 3
+                }
+            };
+            while more(&r) {
                 r.ready().map_err(usage)?;
                 let start = Instant::now();
                 r.run(1).map_err(usage)?;
@@ -1031,7 +1048,7 @@ fn bench_moves(scale: f64, json: bool) -> Result<(), UsageError> {
     if json {
         out!(
             "{}",
-            serde_json::json!({ "prior": "gaussian, sigma = N/8", "moves": rows, "plan_slices": slices })
+            serde_json::json!({ "prior": "gaussian, sigma = N/8", "whole_trial": whole, "moves": rows, "plan_slices": slices })
         );
     }
     Ok(())

@@ -171,6 +171,7 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--episode Cargo.toml is not a torus-search config (JSON)",
         ),
         (&["bench", "--seed", "3"], "--episode <FILE>"),
+        (&["bench", "--whole"], "--moves"),
     ];
     for (args, want) in cases {
         let o = cli(args);
