@@ -23,7 +23,8 @@ const wasm = await loadPkg();
  * decisions (calls that make one move) for `seconds`, each timed alone and
  * without setting up the next trial (`ready`), as the CLI does. Returns the
  * mean ms per move, the median and longest decision, and the episodes the
- * window finished (0: only trial 0's first moves).
+ * window finished (0: only trial 0's first moves). With --whole: every
+ * decision of trial 0, and no warm-up move.
  */
 function timeMoves(config) {
   const bench = new wasm.MoveBench(config);
@@ -46,7 +47,7 @@ function timeMoves(config) {
   const total = each.reduce((a, b) => a + b, 0);
   each.sort((a, b) => a - b);
   return {
-    wasm_ms_per_move: total / (moves - m0),
+    wasm_ms_per_move: total / Math.max(1, moves - m0),
     wasm_median_ms: each[each.length >> 1],
     wasm_longest_ms: each[each.length - 1],
     wasm_moves: moves - m0,
