@@ -382,8 +382,9 @@ fn bench_moves_reports_each_searchers_mean_median_and_longest_decision() {
             assert!(row["moves"].as_u64().is_some_and(|m| m >= 3), "{row}");
             assert!(row["episodes"].as_u64().is_some(), "{row}");
             assert!(mean > 0.0 && median > 0.0, "{row}");
-            // The longest decision bounds the others, and so their mean
-            // (a decision makes at most one move).
+            // The longest decision bounds the others, and so their mean:
+            // here every decision makes one move (no target is drawn within
+            // the start's disc, σ = N/8 away from it).
             assert!(median <= longest && mean <= longest * 1.0001, "{row}");
         }
     }
