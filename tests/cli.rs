@@ -383,8 +383,8 @@ fn bench_moves_reports_each_searchers_mean_median_and_longest_decision() {
             assert!(row["episodes"].as_u64().is_some(), "{row}");
             assert!(mean > 0.0 && median > 0.0, "{row}");
             // The longest decision bounds the others, and so their mean:
-            // here every decision makes one move (no target is drawn within
-            // the start's disc, σ = N/8 away from it).
+            // here every decision makes one move (no trial's target lies in
+            // the start's disc, about 4σ from the prior's centre on each axis).
             assert!(median <= longest && mean <= longest * 1.0001, "{row}");
         }
     }
