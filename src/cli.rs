@@ -948,47 +948,13 @@ fn bench(m: &ArgMatches) -> Result<(), UsageError> {
 /// were timed.
 fn bench_moves(scale: f64, whole: bool, json: bool) -> Result<(), UsageError> {
     use torus_search::bench::{move_cases, MoveRunner};
-    // A planner that makes its plan in slices: each slice timed alone (one
-    // call of the page's worker makes up to `PLAN_CALL_SLICES` of them),
-    // over trial 0's plan. First, before the moves below keep that plan for
-    // the process; not with `whole`, whose trial 0 makes its plans itself.
-    let mut slices = Vec::new();
-    if !json && !whole {
-        out!(
-            "{:<16}{:>6}{:>10}{:>14}{:>14}",
-            "plan slices",
-            "N",
-            "slices",
-            "median ms",
-            "longest ms"
-        );
-    }
-    for n in if whole { vec![] } else { vec![40, 256] } {
-        for (label, cfg) in move_cases(n) {
-            let mut ep = torus_search::episode::Episode::trial(&cfg, 0).map_err(usage)?;
-            let mut ms = Vec::new();
-            loop {
-                let t = Instant::now();
-                let moved = ep.step_loops(1);
-                ms.push(1e3 * t.elapsed().as_secs_f64());
-                if moved || ep.planning().is_none() {
-                    break;
-                }
-            }
-            if ms.len() < 2 {
-                continue;
-            }
-            ms.sort_by(f64::total_cmp);
-            let (median, longest) = (ms[ms.len() / 2], ms[ms.len() - 1]);
-            if !json {
-                out!(
-                    "{label:<16}{n:>6}{:>10}{median:>14.3}{longest:>14.3}",
-                    ms.len()
-                );
-            }
-            slices.push(serde_json::json!({ "searcher": label, "n": n, "slices": ms.len(), "median_ms": median, "longest_ms": longest }));
-        }
-    }
+    // First, before the moves below keep trial 0's plans for the process;
+    // not with `whole`, whose trial 0 makes its plans itself.
+    let slices = if whole {
+        Vec::new()
+    } else {
+        plan_slices(json)?
+    };
     let mut rows = Vec::new();
     if !json {
         out!(
@@ -1029,8 +995,7 @@ fn bench_moves(scale: f64, whole: bool, json: bool) -> Result<(), UsageError> {
             let moves = r.moves - moves0;
             let episodes = r.episodes - episodes0;
             let ms = each.iter().sum::<f64>() / moves.max(1) as f64;
-            each.sort_by(f64::total_cmp);
-            let (median, longest) = (each[each.len() / 2], each[each.len() - 1]);
+            let (median, longest) = median_and_longest(&mut each);
             if !json {
                 out!("{label:<16}{n:>6}{ms:>14.4}{median:>12.4}{longest:>12.4}{moves:>10}{episodes:>10}");
             }
@@ -1052,6 +1017,55 @@ fn bench_moves(scale: f64, whole: bool, json: bool) -> Result<(), UsageError> {
         );
     }
     Ok(())
+}
+
+/// The time of each slice of a planner that makes its plan in slices, each
+/// slice timed alone (one call of the page's worker makes up to
+/// `PLAN_CALL_SLICES` of them), over trial 0's plan, at N = 40 and N = 256.
+fn plan_slices(json: bool) -> Result<Vec<serde_json::Value>, UsageError> {
+    let mut slices = Vec::new();
+    if !json {
+        out!(
+            "{:<16}{:>6}{:>10}{:>14}{:>14}",
+            "plan slices",
+            "N",
+            "slices",
+            "median ms",
+            "longest ms"
+        );
+    }
+    for n in [40, 256] {
+        for (label, cfg) in torus_search::bench::move_cases(n) {
+            let mut ep = torus_search::episode::Episode::trial(&cfg, 0).map_err(usage)?;
+            let mut ms = Vec::new();
+            loop {
+                let t = Instant::now();
+                let moved = ep.step_loops(1);
+                ms.push(1e3 * t.elapsed().as_secs_f64());
+                if moved || ep.planning().is_none() {
+                    break;
+                }
+            }
+            if ms.len() < 2 {
+                continue;
+            }
+            let (median, longest) = median_and_longest(&mut ms);
+            if !json {
+                out!(
+                    "{label:<16}{n:>6}{:>10}{median:>14.3}{longest:>14.3}",
+                    ms.len()
+                );
+            }
+            slices.push(serde_json::json!({ "searcher": label, "n": n, "slices": ms.len(), "median_ms": median, "longest_ms": longest }));
+        }
+    }
+    Ok(slices)
+}
+
+/// The median and the largest of `ms` (not empty), which it sorts.
+fn median_and_longest(ms: &mut [f64]) -> (f64, f64) {
+    ms.sort_by(f64::total_cmp);
+    (ms[ms.len() / 2], ms[ms.len() - 1])
 }
 
 /// Times loops `from..to` of the episode (trials 0, 1, … of the config in `file`).
