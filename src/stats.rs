@@ -381,6 +381,59 @@ mod tests {
     }
 
     #[test]
+    fn box_stats_whiskers_include_values_on_the_fences() {
+        // q1 = 4 and q3 = 10 (type 7 on 9 values), IQR 6: fences at −5 and
+        // 19, on which data lie, so the whiskers end there; −20 and 30 are
+        // outliers. An IQR of q3 / q1, fences 1.5 + IQR out, or a strict
+        // fence test all move a whisker.
+        let xs = [-20.0, -5.0, 4.0, 6.0, 6.0, 8.0, 10.0, 19.0, 30.0];
+        let b = BoxStats::of_sorted(&xs);
+        assert_eq!((b.q1, b.median, b.q3), (4.0, 6.0, 10.0));
+        assert_eq!((b.whisker_low, b.whisker_high), (-5.0, 19.0));
+        assert_eq!((b.min, b.max), (-20.0, 30.0));
+    }
+
+    #[test]
+    fn summary_of_trials_by_hand() {
+        let trial = |steps, optimal, found, rollouts, rollout_steps, truncated| TrialResult {
+            steps,
+            optimal,
+            found,
+            target: 0,
+            counters: Counters {
+                rollouts,
+                rollout_steps,
+                truncated,
+            },
+        };
+        let results = [
+            trial(10, 5, true, 3, 30, 1),
+            trial(20, 0, true, 2, 10, 0),
+            trial(30, 10, false, 1, 5, 1),
+            trial(40, 5, true, 0, 0, 0),
+        ];
+        let s = Summary::of(&results);
+        assert_eq!(s.trials, 4);
+        assert_eq!((s.steps.mean, s.optimal.mean), (25.0, 5.0));
+        // ASOO: the mean of steps − optimal (5, 20, 20, 35).
+        assert_eq!(s.asoo.mean, 20.0);
+        // The ratio leaves out the trial with optimal 0: (2 + 3 + 8) / 3.
+        assert_eq!((s.ratio.n, s.zero_optimal), (3, 1));
+        assert!((s.ratio.mean - 13.0 / 3.0).abs() < 1e-12);
+        assert_eq!(s.steps_over_mean_optimal, 5.0);
+        assert_eq!((s.q1_steps, s.median_steps, s.q3_steps), (17.5, 25.0, 32.5));
+        assert_eq!(s.capped, 1, "the one trial not found");
+        assert_eq!(
+            s.counters,
+            Counters {
+                rollouts: 6,
+                rollout_steps: 45,
+                truncated: 2
+            }
+        );
+    }
+
+    #[test]
     fn box_stats_whiskers_stop_at_the_fences() {
         // q1 = 2, q3 = 4 (type 7 on 9 values), IQR 2: fences -1 and 7, so
         // the whiskers end at the last data inside them (1 and 5), not at
