@@ -626,3 +626,62 @@ impl MinTree {
         best
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng;
+
+    /// The trees against plain arrays, under random updates. The greedy
+    /// bound's own tests only ever add to prefixes of small trees, and
+    /// mutants that dropped or negated the lazy adds on the way down
+    /// `first_exhausted` passed them.
+    #[test]
+    fn slack_tree_matches_a_plain_array() {
+        let mut r = rng::stream(5, 0);
+        for len in [1usize, 2, 3, 5, 8, 13, 32, 100] {
+            let mut tree = SlackTree::new(len);
+            let mut plain = vec![0i64; len];
+            for step in 0..2000 {
+                let a = rng::below(&mut r, len as u32 + 1) as usize;
+                let b = rng::below(&mut r, len as u32 + 1) as usize;
+                let (lo, hi) = (a.min(b), a.max(b));
+                // Mostly small steps around 0, so classes keep crossing it.
+                let v = rng::below(&mut r, 7) as i64 - 3;
+                tree.add(lo, hi, v);
+                for s in &mut plain[lo..hi] {
+                    *s += v;
+                }
+                let want = plain.iter().position(|&s| s <= 0);
+                assert_eq!(
+                    tree.first_exhausted(),
+                    want,
+                    "len {len}, step {step}: add {v} to {lo}..{hi}, slacks {plain:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn min_tree_matches_a_plain_array() {
+        let mut r = rng::stream(5, 1);
+        for len in [1usize, 2, 3, 5, 8, 13, 32, 100] {
+            let mut tree = MinTree::new(len);
+            let mut plain = vec![u32::MAX; len];
+            for step in 0..2000 {
+                let i = rng::below(&mut r, len as u32) as usize;
+                let v = if rng::below(&mut r, 8) == 0 {
+                    u32::MAX
+                } else {
+                    rng::below(&mut r, 1000)
+                };
+                tree.set(i, v);
+                plain[i] = v;
+                for hi in 0..=len {
+                    let want = plain[..hi].iter().copied().min().unwrap_or(u32::MAX);
+                    assert_eq!(tree.prefix_min(hi), want, "len {len}, step {step}, hi {hi}");
+                }
+            }
+        }
+    }
+}

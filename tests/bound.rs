@@ -161,7 +161,7 @@ impl Brute<'_> {
 }
 
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
-fn dynamic_programme_matches_brute_force_on_3x3() {
+fn dynamic_programme_matches_brute_force_on_3x3_and_4x4() {
     let torus = Torus::new(3).unwrap();
     let mut rng = rng::stream(31, 0);
     for (rv, r2) in [(0.0, 0), (1.0, 1)] {
@@ -177,6 +177,21 @@ fn dynamic_programme_matches_brute_force_on_3x3() {
             }
         }
     }
+    // 4 × 4, the largest lattice the tiny-lattice planner tests take the
+    // optimum on (README, Planners).
+    let torus = Torus::new(4).unwrap();
+    let sensor = Sensor::new(&torus, 1.0).unwrap();
+    for start in [0u32, 5, 15] {
+        for (name, mass) in priors(4, start, &mut rng) {
+            let dp = dp_optimum(&torus, &sensor, &mass, start).unwrap();
+            let brute = Brute::optimum(4, 1, &mass, start, 9);
+            assert!(
+                (dp - brute).abs() < 1e-12,
+                "4 × 4, start {start}, {name}: dp {dp} vs brute force {brute}"
+            );
+        }
+    }
+    let torus = Torus::new(3).unwrap();
     // A Hamiltonian path visits the 9 cells one by one: Σ_{t<9} (1 − (t+1)/9) = 4.
     let sensor = Sensor::new(&torus, 0.0).unwrap();
     let dp = dp_optimum(&torus, &sensor, &[1.0 / 9.0; 9], 0).unwrap();
@@ -332,6 +347,7 @@ fn incremental_greedy_matches_a_naive_reference() {
                 let moves = (n * n) as usize + 2;
                 let got = covered_bound(&torus, &sensor, &mass, start, moves);
                 let want = reference_covered(ni, r2, &mass, start, moves);
+                assert_eq!(got.len(), moves, "n {n}, rv {rv}, {name}: one M_t a move");
                 for (t, (g, w)) in got.iter().zip(&want).enumerate() {
                     assert!(
                         (g - w).abs() < 1e-12,
@@ -442,6 +458,8 @@ fn known_target_bound_is_the_mean_optimal_steps() {
     })
     .unwrap();
     assert!((known - want).abs() < 1e-9, "{known} vs {want}");
+    let direct = known_target_mean(&torus, &sensor, prior.mass(), start);
+    assert!((direct - want).abs() < 1e-9, "{direct} vs {want}");
     let blind = lower_bound(&cfg).unwrap();
     assert!(
         blind > known + 1.0,
