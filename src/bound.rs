@@ -632,10 +632,10 @@ mod tests {
     use super::*;
     use crate::rng;
 
-    /// The trees against plain arrays, under random updates. The greedy
-    /// bound's own tests only ever add to prefixes of small trees, and
-    /// mutants that dropped or negated the lazy adds on the way down
-    /// `first_exhausted` passed them.
+    /// The slack tree against a plain array, under random range adds. The
+    /// greedy bound's own tests only ever add to prefixes of small trees,
+    /// and mutants that negated or multiplied the lazy adds on the way
+    /// down `first_exhausted` passed them.
     #[test]
     fn slack_tree_matches_a_plain_array() {
         let mut r = rng::stream(5, 0);
@@ -662,6 +662,9 @@ mod tests {
         }
     }
 
+    /// The min tree against a plain array, every prefix after every
+    /// update. The bound's queries all start at class 0, so mutants of the
+    /// walk's left edge are equivalent there; this checks the rest of it.
     #[test]
     fn min_tree_matches_a_plain_array() {
         let mut r = rng::stream(5, 1);
