@@ -24,6 +24,9 @@
 //! * an empty distance class given the next class's head (a real bug found
 //!   while writing this): a delta bound below E[τ] in
 //!   `bound_never_exceeds_the_optimum`.
+//! * the programme's relaxation inside a covered set stopped after its
+//!   first pass that changed anything: 146/28 against 144/28 for a prior
+//!   whose optimal search walks back over two searched cells.
 //!
 //! Runs natively (`cargo test --test bound`) and in Node
 //! (`cargo test --target wasm32-unknown-unknown --test bound`).
@@ -191,6 +194,30 @@ fn dynamic_programme_matches_brute_force_on_3x3_and_4x4() {
     let sensor = Sensor::new(&torus, 0.0).unwrap();
     let dp = dp_optimum(&torus, &sensor, &[1.0 / 9.0; 9], 0).unwrap();
     assert!((dp - 4.0).abs() < 1e-12, "{dp}");
+}
+
+/// A prior whose optimal search walks back over two searched cells, so
+/// the programme's shortest paths inside a covered set need more than one
+/// relaxation pass.
+///
+/// 4 × 4, r_v = 0, start 0, cell weights out of 28 with a massless 2 × 2
+/// block (cells 4, 5, 8, 9). Brute force's optimal path is 0, 12, 15, 3,
+/// 7, 6, 10, 14, 13, 1, 2, 3, 7, 11: from 2 it walks back over 3 and 7 to
+/// reach 11, and `Σ R_t = 144/28`. A relaxation that stops after its first
+/// pass that changed anything leaves position 2 with the cost of the exit
+/// it saw before 3 and 7 were relaxed, and gives 146/28. (Random priors
+/// with weights 0–3 tell the two apart in 5 of 3 000; the random priors
+/// of the test above never do.)
+#[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
+fn dynamic_programme_walks_back_over_searched_cells() {
+    let w = [1, 3, 1, 3, 0, 0, 3, 3, 0, 0, 2, 1, 3, 2, 3, 3];
+    let mass: Vec<f64> = w.iter().map(|&k| k as f64 / 28.0).collect();
+    let torus = Torus::new(4).unwrap();
+    let sensor = Sensor::new(&torus, 0.0).unwrap();
+    let dp = dp_optimum(&torus, &sensor, &mass, 0).unwrap();
+    let brute = Brute::optimum(4, 0, &mass, 0, 16);
+    assert!((brute - 144.0 / 28.0).abs() < 1e-12, "brute force {brute}");
+    assert!((dp - brute).abs() < 1e-12, "dp {dp} vs brute force {brute}");
 }
 
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
