@@ -103,7 +103,8 @@ fn bad_input_names_the_flag_and_range_and_exits_2() {
             "--exact cannot evaluate --known",
         ),
         (
-            &["run", "--known", "--blind"],
+            // Two trials, so that a refusal lost runs quickly to exit 0.
+            &["run", "--known", "--blind", "--trials", "2"],
             "--blind cannot evaluate --known",
         ),
         (
