@@ -204,8 +204,9 @@ fn dynamic_programme_matches_brute_force_on_3x3_and_4x4() {
 /// block (cells 4, 5, 8, 9). Brute force's optimal path is 0, 12, 15, 3,
 /// 7, 6, 10, 14, 13, 1, 2, 3, 7, 11: from 2 it walks back over 3 and 7 to
 /// reach 11, and `Σ R_t = 144/28`. A relaxation that stops after its first
-/// pass that changed anything leaves position 2 with the cost of the exit
-/// it saw before 3 and 7 were relaxed, and gives 146/28. (Random priors
+/// pass that changed anything leaves position 2 with the way out it found
+/// before 3 and 7 (later in the pass) were relaxed: through 1 and the
+/// massless block, two moves longer with 1/28 left, so 146/28. (Random priors
 /// with weights 0–3 tell the two apart in 5 of 3 000; the random priors
 /// of the test above never do.)
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
