@@ -180,6 +180,96 @@ impl BeliefState {
 mod tests {
     use super::*;
     use crate::config::Config;
+    use crate::lattice::Torus;
+    use crate::prior::PriorSpec;
+
+    /// A 10 × 10 lattice, r_v = 1, and a prior from `weights`.
+    fn small(weights: Vec<f64>) -> (Sensor, BeliefState) {
+        let torus = Torus::new(10).unwrap();
+        let sensor = Sensor::new(&torus, 1.0).unwrap();
+        let prior = TargetPrior::new(&torus, &PriorSpec::Weights { weights }).unwrap();
+        (sensor, BeliefState::new(Belief::Posterior, prior, None))
+    }
+
+    #[test]
+    fn the_posterior_is_the_prior_on_unsearched_cells_renormalised() {
+        let (sensor, mut b) = small((0..100).map(|c| (c % 7 + 1) as f64).collect());
+        for cell in [0, 37, 55] {
+            b.search_around(&sensor, cell);
+        }
+        let mut out = Vec::new();
+        b.posterior_into(&mut out);
+        let prior = b.prior_mass();
+        let left: f64 = (0..100)
+            .filter(|&c| b.searched()[c] == 0)
+            .map(|c| prior[c])
+            .sum();
+        assert!(left < 0.9, "{left}");
+        for c in 0..100 {
+            let want = if b.searched()[c] == 0 {
+                prior[c] / left
+            } else {
+                0.0
+            };
+            assert!(
+                (out[c] - want).abs() <= 1e-15,
+                "cell {c}: {} vs {want}",
+                out[c]
+            );
+        }
+        assert!((out.iter().sum::<f64>() - 1.0).abs() <= 1e-14);
+    }
+
+    #[test]
+    fn an_exhausted_posterior_is_uniform_over_the_unsearched_cells() {
+        // The planner was wrong: all of the prior's mass is searched.
+        let mut w = vec![0.0; 100];
+        w[44] = 1.0;
+        let (sensor, mut b) = small(w);
+        b.search_around(&sensor, 44);
+        let mut out = Vec::new();
+        b.posterior_into(&mut out);
+        for (c, (&p, &s)) in out.iter().zip(b.searched()).enumerate() {
+            let want = if s == 0 { 1.0 / 95.0 } else { 0.0 };
+            assert_eq!(p, want, "cell {c}");
+        }
+        assert_eq!(out.len(), 100);
+    }
+
+    /// Practice targets from a posterior whose prior mass is mostly
+    /// searched (so the rejection sampler gives way to the alias table):
+    /// never a searched cell, and each cell's count within 4.5 standard
+    /// errors of its posterior share. Keeping the searched cells' mass in
+    /// the table draws them; a uniform table draws a cell of weight 1
+    /// (against a mean of 4) 31 standard errors too often.
+    #[test]
+    fn posterior_targets_follow_the_posterior() {
+        let mut w: Vec<f64> = (0..100).map(|c| (c % 7 + 1) as f64).collect();
+        w[0] = 1e6;
+        let (sensor, mut b) = small(w);
+        b.search_around(&sensor, 0);
+        let mut post = Vec::new();
+        b.posterior_into(&mut post);
+        let mut rng = crate::rng::stream(5, 0);
+        let n = 40_000;
+        let mut counts = [0u32; 100];
+        for _ in 0..n {
+            counts[b.posterior_target(&mut rng) as usize] += 1;
+        }
+        for c in 0..100 {
+            let p = post[c];
+            let (want, se) = (n as f64 * p, (n as f64 * p * (1.0 - p)).sqrt());
+            let got = counts[c] as f64;
+            if p == 0.0 {
+                assert_eq!(counts[c], 0, "searched cell {c} drawn");
+            } else {
+                assert!(
+                    (got - want).abs() <= 4.5 * se,
+                    "cell {c}: {got} vs {want} ± {se}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn the_unsearched_mass_is_exact_to_the_last_cell() {
