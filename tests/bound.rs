@@ -168,7 +168,8 @@ fn dynamic_programme_matches_brute_force_on_3x3_and_4x4() {
     let mut rng = rng::stream(31, 0);
     // (N, radii with their r², starts, brute-force depth). 4 × 4 is the
     // largest lattice the tiny-lattice planner tests take the optimum on
-    // (README, Planners); r_v = 0 there is too slow to brute-force.
+    // (README, Planners); r_v = 0 there is too slow to brute-force for
+    // these random priors (the next test takes one prior that prunes fast).
     let lattices = [
         (3u32, &[(0.0, 0i64), (1.0, 1)][..], &[0u32, 4][..], 12u32),
         (4, &[(1.0, 1)][..], &[0, 5, 15][..], 9),
