@@ -405,6 +405,49 @@ mod tests {
         let p = TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: 0.0 }).unwrap();
         // (N/2+1, N/2+1) 1-based is (20, 20) 0-based.
         assert_eq!(p.delta_cell(), Some(20 * 40 + 20));
+        // All the mass is on that cell, and every draw lands there.
+        for spec in [
+            PriorSpec::Gaussian { sigma: 0.0 },
+            PriorSpec::Delta { cell: None },
+            PriorSpec::Delta { cell: Some(7) },
+        ] {
+            let p = TargetPrior::new(&t, &spec).unwrap();
+            let c = p.delta_cell().unwrap();
+            assert_eq!(p.mass().len(), 1600, "{spec:?}");
+            for (i, &m) in p.mass().iter().enumerate() {
+                assert_eq!(m, if i == c as usize { 1.0 } else { 0.0 }, "{spec:?}");
+            }
+            let mut r = rng::stream(3, 0);
+            assert!((0..100).all(|_| p.sample(&mut r) == c), "{spec:?}");
+        }
+    }
+
+    #[test]
+    fn gaussian_tails_keep_their_relative_accuracy() {
+        // Each axis cell's mass is a difference of two normal tails, taken
+        // on the side where it does not cancel. So the mass is symmetric
+        // about the mode to rounding even 19 cells (7.6σ) out, where it is
+        // below 1e-13 and a difference of the near-1 complements would be
+        // off by 1e-3 of itself; and it keeps falling there.
+        let (n, sigma) = (40, 2.5);
+        let axis = wrapped_rounded_normal(n, n as f64 / 2.0, sigma);
+        let mode = (n / 2) as usize;
+        for d in 1..mode {
+            let (hi, lo) = (axis[mode + d], axis[mode - d]);
+            assert!(
+                (hi / lo - 1.0).abs() < 1e-9,
+                "cells {} and {}: {hi:e} against {lo:e}",
+                mode + d,
+                mode - d
+            );
+            assert!(hi < axis[mode + d - 1], "not falling at {}", mode + d);
+        }
+        // Against the tail itself: P(18.5 < X − μ ≤ 19.5) plus the wrapped
+        // P(−21.5 < X − μ ≤ −20.5).
+        let want = upper_tail(18.5 / sigma) - upper_tail(19.5 / sigma) + upper_tail(20.5 / sigma)
+            - upper_tail(21.5 / sigma);
+        let far = axis[mode + 19];
+        assert!((far / want - 1.0).abs() < 1e-9, "{far:e} against {want:e}");
     }
 
     #[test]
@@ -452,6 +495,32 @@ mod tests {
         let mut big = vec![0u8; 1024 * 1024];
         big[5] = 3;
         assert_eq!(decode_paint(&encode_paint(&big), 1024).unwrap(), big);
+        // The exact text: a run is one 16-bit word, level << 12 | (length
+        // − 1), as three base64url digits, and equal neighbours share a run.
+        assert_eq!(encode_paint(&[0; 9]), "AAI");
+        assert_eq!(encode_paint(&[0, 0, 1, 1, 17, 0]), "AABBABPAAAAA");
+        assert_eq!(encode_paint(&vec![2; 4097]), "C__CAA");
+        assert_eq!(
+            decode_paint("AABBABPAAAAA", 3).unwrap_err(),
+            PaintError::Size { got: 6, want: 9 }
+        );
+        // The run that overshoots is counted in the error.
+        assert_eq!(
+            decode_paint("AABBABAAB", 2).unwrap_err(),
+            PaintError::Size { got: 6, want: 4 }
+        );
+        assert_eq!(
+            PaintError::Size { got: 6, want: 4 }.to_string(),
+            "paint covers 6 cells, not n*n = 4"
+        );
+        assert_eq!(
+            PaintError::Syntax.to_string(),
+            "paint is not run-length encoded levels (base64url, 3 characters a run)"
+        );
+        assert_eq!(
+            PaintError::Empty.to_string(),
+            "paint has no cell above level 0"
+        );
         // Halving a grid keeps its corners.
         let mut g = vec![0u8; 16];
         g[0] = 9;
@@ -461,26 +530,37 @@ mod tests {
 
     #[test]
     fn rejects_bad_specs() {
+        // Each error names the bad value, as the library's users see it.
         let t = Torus::new(4).unwrap();
-        assert!(TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: -1.0 }).is_err());
-        assert!(TargetPrior::new(&t, &PriorSpec::Gaussian { sigma: f64::NAN }).is_err());
-        assert!(TargetPrior::new(
-            &t,
-            &PriorSpec::Weights {
+        let message = |spec: PriorSpec| TargetPrior::new(&t, &spec).unwrap_err().to_string();
+        assert_eq!(
+            message(PriorSpec::Gaussian { sigma: -1.0 }),
+            "sigma must be a number >= 0 (or inf for uniform), got -1"
+        );
+        assert!(message(PriorSpec::Gaussian { sigma: f64::NAN }).ends_with("got NaN"));
+        assert_eq!(
+            message(PriorSpec::Weights {
                 weights: vec![1.0; 3]
-            }
-        )
-        .is_err());
-        assert!(TargetPrior::new(
-            &t,
-            &PriorSpec::Weights {
+            }),
+            "prior weights must have n*n = 16 entries, got 3"
+        );
+        assert_eq!(
+            message(PriorSpec::Weights {
                 weights: vec![0.0; 16]
-            }
-        )
-        .is_err());
+            }),
+            "prior weights must not all be zero"
+        );
         let mut w = vec![1.0; 16];
         w[3] = f64::INFINITY;
-        assert!(TargetPrior::new(&t, &PriorSpec::Weights { weights: w }).is_err());
-        assert!(TargetPrior::new(&t, &PriorSpec::Delta { cell: Some(16) }).is_err());
+        assert_eq!(
+            message(PriorSpec::Weights { weights: w }),
+            "prior weight 3 must be a finite number >= 0, got inf"
+        );
+        assert_eq!(
+            message(PriorSpec::Delta { cell: Some(16) }),
+            "delta prior cell index 16 is outside the lattice"
+        );
+        // The last valid delta cell is accepted.
+        assert!(TargetPrior::new(&t, &PriorSpec::Delta { cell: Some(15) }).is_ok());
     }
 }
