@@ -529,6 +529,30 @@ mod tests {
     }
 
     #[test]
+    fn alias_table_draws_unnormalised_weights_in_proportion() {
+        // Weights need not sum to 1, and zero weights are never drawn. A
+        // table built as if they summed to 1 draws 0 and 3 as often as 2.
+        let w = [0.0, 1.0, 3.0, 0.0, 4.0];
+        let table = Alias::new(&w);
+        let draws = 80_000u32;
+        let mut counts = [0u32; 5];
+        let mut r = rng::stream(11, 0);
+        for _ in 0..draws {
+            counts[table.sample(&mut r) as usize] += 1;
+        }
+        for (i, (&c, &wi)) in counts.iter().zip(&w).enumerate() {
+            let p = wi / 8.0;
+            let se = (p * (1.0 - p) / draws as f64).sqrt();
+            let got = c as f64 / draws as f64;
+            if p == 0.0 {
+                assert_eq!(c, 0, "index {i} has weight 0");
+            } else {
+                assert!((got - p).abs() < 4.5 * se, "index {i}: {got} against {p}");
+            }
+        }
+    }
+
+    #[test]
     fn rejects_bad_specs() {
         // Each error names the bad value, as the library's users see it.
         let t = Torus::new(4).unwrap();
