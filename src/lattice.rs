@@ -473,6 +473,11 @@ mod tests {
                         t.axis_delta(a, b).unsigned_abs(),
                         "n {n}: {a} {b}"
                     );
+                    // The displacement lies in (−n/2, n/2]: half-way round
+                    // an even lattice is +n/2 either way.
+                    let d = t.axis_delta(a, b);
+                    assert!(-(n as i32) < 2 * d && 2 * d <= n as i32, "n {n}: {a} {b}");
+                    assert_eq!((a as i32 + d).rem_euclid(n as i32), b as i32);
                 }
             }
         }
@@ -487,6 +492,61 @@ mod tests {
         assert!(Sensor::new(&t, f64::NAN).is_err());
         assert!(t.cell_1based("start", 0, 1).is_err());
         assert_eq!(t.cell_1based("start", 5, 5).unwrap(), 24);
+        // Each error names the value and the allowed range.
+        assert_eq!(
+            Torus::new(1025).unwrap_err().to_string(),
+            "n must be an integer in 3..=1024, got 1025"
+        );
+        assert_eq!(
+            Sensor::new(&t, -1.5).unwrap_err().to_string(),
+            "rv must be a finite number >= 0, got -1.5"
+        );
+        assert_eq!(
+            t.cell_1based("start", 0, 1).unwrap_err().to_string(),
+            "start (0,1) is outside the lattice: each coordinate must be in 1..=5"
+        );
+        assert_eq!(
+            t.cell_1based("target", 3, 6).unwrap_err(),
+            LatticeError::Cell {
+                what: "target",
+                x: 3,
+                y: 6,
+                n: 5
+            }
+        );
+    }
+
+    #[test]
+    fn moves_have_indices_names_and_reverses() {
+        for i in 0..8u32 {
+            let m = Move::from_index(i);
+            assert_eq!(m, Move::ALL[(i % 4) as usize], "index {i}");
+            // Two indices on is the reverse move (the planners undo moves so).
+            let (dx, dy) = m.delta();
+            assert_eq!(Move::from_index(i + 2).delta(), (-dx, -dy), "index {i}");
+        }
+        let names = Move::ALL.map(Move::name);
+        assert_eq!(names, ["up", "right", "down", "left"]);
+    }
+
+    #[test]
+    fn the_neighbour_table_and_move_to_agree_with_step() {
+        let t = Torus::new(5).unwrap();
+        for c in 0..25u32 {
+            let (x, y) = t.xy(c);
+            for m in Move::ALL {
+                let to = t.step(c, m);
+                let (dx, dy) = m.delta();
+                assert_eq!(to, t.cell(x as i64 + dx as i64, y as i64 + dy as i64));
+                // The table holds 4 × the neighbour, at 4 × the cell + the move.
+                assert_eq!(t.neighbours()[(4 * c + m as u32) as usize], 4 * to);
+                assert_eq!(t.move_to(c, to), Some(m), "cell {c}");
+            }
+            assert_eq!(t.neighbours().len(), 100);
+            // Neither the cell itself nor a diagonal is one move away.
+            assert_eq!(t.move_to(c, c), None);
+            assert_eq!(t.move_to(c, t.cell(x as i64 + 1, y as i64 + 1)), None);
+        }
     }
 
     #[test]
@@ -504,6 +564,17 @@ mod tests {
         assert_eq!(Sensor::new(&t, 0.0).unwrap().offsets().len(), 1);
         assert_eq!(Sensor::new(&t, 1.0).unwrap().offsets().len(), 5);
         assert_eq!(Sensor::new(&t, 2f64.sqrt()).unwrap().offsets().len(), 9);
+        // The squared radius detection compares with, √2 not lost to rounding.
+        for (rv, r2) in [
+            (0.0, 0),
+            (1.0, 1),
+            (1.5, 2),
+            (2f64.sqrt(), 2),
+            (2.0, 4),
+            (3.7, 13),
+        ] {
+            assert_eq!(Sensor::new(&t, rv).unwrap().radius2(), r2, "rv {rv}");
+        }
         // A radius larger than the torus covers every cell once.
         assert_eq!(
             Sensor::new(&Torus::new(3).unwrap(), 50.0)

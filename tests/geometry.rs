@@ -288,6 +288,66 @@ fn sensor_offsets_are_the_cells_within_the_radius() {
                     xy(ni, c)
                 );
             }
+            // Arming another target clears the first one's cells, the mask
+            // is what `hit` reads, and disarming clears it all.
+            let other = t.cell(1, ni - 2);
+            s.arm(other);
+            assert_eq!(s.mask().len(), t.cells());
+            for c in 0..t.cells() as u32 {
+                let want = ref_dist2(ni, xy(ni, c), xy(ni, other)) <= r2;
+                assert_eq!(s.hit(c), want, "N={n} rv={rv} re-armed at {c}");
+                assert_eq!(s.mask()[c as usize], want as u8);
+            }
+            s.disarm();
+            assert!(s.mask().iter().all(|&b| b == 0), "N={n} rv={rv}");
+        }
+    }
+}
+
+#[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
+fn sensor_fronts_are_the_cells_a_move_newly_covers() {
+    // The coverage planners count only a move's front: the cells within the
+    // radius of the cell moved to and not of the cell moved from.
+    for n in 3..=7u32 {
+        let t = Torus::new(n).unwrap();
+        let ni = n as i64;
+        for (rv, r2) in RADII {
+            let s = Sensor::new(&t, rv).unwrap();
+            let mut widest = 0;
+            for c in 0..t.cells() as u32 {
+                let (x, y) = xy(ni, c);
+                let disc: Vec<u32> = s.around(c).collect();
+                assert_eq!(
+                    s.around_xy(x as i32, y as i32).collect::<Vec<_>>(),
+                    disc,
+                    "N={n} rv={rv} around_xy at {c}"
+                );
+                for m in Move::ALL {
+                    let (dx, dy) = m.delta();
+                    let from = (x - dx as i64, y - dy as i64);
+                    let want: Vec<u32> = disc
+                        .iter()
+                        .copied()
+                        .filter(|&d| ref_dist2(ni, from, xy(ni, d)) > r2)
+                        .collect();
+                    let got: Vec<u32> = s.front(m, c).collect();
+                    assert_eq!(got, want, "N={n} rv={rv} {m:?} into {c}");
+                    widest = widest.max(got.len());
+                }
+            }
+            assert_eq!(s.front_len(), widest, "N={n} rv={rv}");
+            // The largest ℓ∞ and ℓ1 lengths of a torus displacement within
+            // the radius.
+            let short = |d: i64| d.min(ni - d);
+            let within = (0..t.cells() as u32).filter(|&c| ref_dist2(ni, (0, 0), xy(ni, c)) <= r2);
+            let reach = within.clone().map(|c| {
+                let (x, y) = xy(ni, c);
+                (short(x).max(short(y)), short(x) + short(y))
+            });
+            let linf = reach.clone().map(|r| r.0).max().unwrap();
+            let l1 = reach.map(|r| r.1).max().unwrap();
+            assert_eq!(s.reach() as i64, linf, "N={n} rv={rv}");
+            assert_eq!(s.reach_l1() as i64, l1, "N={n} rv={rv}");
         }
     }
 }
