@@ -531,7 +531,8 @@ mod tests {
     #[test]
     fn alias_table_draws_unnormalised_weights_in_proportion() {
         // Weights need not sum to 1, and zero weights are never drawn. A
-        // table built as if they summed to 1 draws 0 and 3 as often as 2.
+        // table built as if they summed to 1 draws weights 1 and 3 equally
+        // often.
         let w = [0.0, 1.0, 3.0, 0.0, 4.0];
         let table = Alias::new(&w);
         let draws = 80_000u32;

@@ -317,6 +317,12 @@ fn sensor_fronts_are_the_cells_a_move_newly_covers() {
             for c in 0..t.cells() as u32 {
                 let (x, y) = xy(ni, c);
                 let disc: Vec<u32> = s.around(c).collect();
+                let mut sorted = disc.clone();
+                sorted.sort_unstable();
+                let within: Vec<u32> = (0..t.cells() as u32)
+                    .filter(|&d| ref_dist2(ni, (x, y), xy(ni, d)) <= r2)
+                    .collect();
+                assert_eq!(sorted, within, "N={n} rv={rv} around {c}");
                 assert_eq!(
                     s.around_xy(x as i32, y as i32).collect::<Vec<_>>(),
                     disc,
