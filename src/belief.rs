@@ -252,24 +252,11 @@ mod tests {
         b.search_around(&sensor, 0);
         let post = reference_posterior(&b);
         let mut rng = crate::rng::stream(5, 0);
-        let n = 40_000;
         let mut counts = [0u32; 100];
-        for _ in 0..n {
+        for _ in 0..40_000 {
             counts[b.posterior_target(&mut rng) as usize] += 1;
         }
-        for c in 0..100 {
-            let p = post[c];
-            let (want, se) = (n as f64 * p, (n as f64 * p * (1.0 - p)).sqrt());
-            let got = counts[c] as f64;
-            if p == 0.0 {
-                assert_eq!(counts[c], 0, "searched cell {c} drawn");
-            } else {
-                assert!(
-                    (got - want).abs() <= 4.5 * se,
-                    "cell {c}: {got} vs {want} ± {se}"
-                );
-            }
-        }
+        crate::prior::assert_draws_follow(&counts, &post, 4.5);
     }
 
     #[test]

@@ -395,6 +395,27 @@ impl Alias {
     }
 }
 
+/// Asserts that `counts` of draws follow the probabilities `p`: a cell of
+/// probability 0 is never drawn, and every other count lies within `z`
+/// binomial standard errors of its expectation.
+#[cfg(test)]
+pub(crate) fn assert_draws_follow(counts: &[u32], p: &[f64], z: f64) {
+    assert_eq!(counts.len(), p.len());
+    let draws = counts.iter().map(|&c| c as f64).sum::<f64>();
+    for (i, (&c, &p)) in counts.iter().zip(p).enumerate() {
+        if p == 0.0 {
+            assert_eq!(c, 0, "index {i} has probability 0 but was drawn");
+        } else {
+            let (want, se) = (draws * p, (draws * p * (1.0 - p)).sqrt());
+            let got = c as f64;
+            assert!(
+                (got - want).abs() <= z * se,
+                "index {i}: {got} draws against {want} ± {se}"
+            );
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -535,22 +556,13 @@ mod tests {
         // often.
         let w = [0.0, 1.0, 3.0, 0.0, 4.0];
         let table = Alias::new(&w);
-        let draws = 80_000u32;
         let mut counts = [0u32; 5];
         let mut r = rng::stream(11, 0);
-        for _ in 0..draws {
+        for _ in 0..80_000 {
             counts[table.sample(&mut r) as usize] += 1;
         }
-        for (i, (&c, &wi)) in counts.iter().zip(&w).enumerate() {
-            let p = wi / 8.0;
-            let se = (p * (1.0 - p) / draws as f64).sqrt();
-            let got = c as f64 / draws as f64;
-            if p == 0.0 {
-                assert_eq!(c, 0, "index {i} has weight 0");
-            } else {
-                assert!((got - p).abs() < 4.5 * se, "index {i}: {got} against {p}");
-            }
-        }
+        let p = w.map(|wi| wi / 8.0);
+        assert_draws_follow(&counts, &p, 4.5);
     }
 
     #[test]

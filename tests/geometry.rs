@@ -50,8 +50,17 @@ fn every_move_wraps_at_every_edge() {
                 // Each move has an inverse.
                 let back = Move::ALL[(k + 2) % 4];
                 assert_eq!(t.step(got, back), c, "N={n}: {m:?} then {back:?}");
+                // The hot loops' table holds 4 × the neighbour at 4 × the
+                // cell + the move, and `move_to` names the move.
+                assert_eq!(t.neighbours()[4 * c as usize + k], 4 * got);
+                assert_eq!(t.move_to(c, got), Some(m), "N={n}: {m:?} from {c}");
             }
+            // Neither the cell itself nor a diagonal is one move away.
+            let (x, y) = xy(ni, c);
+            assert_eq!(t.move_to(c, c), None);
+            assert_eq!(t.move_to(c, t.cell(x + 1, y + 1)), None);
         }
+        assert_eq!(t.neighbours().len(), 4 * t.cells());
         // The four edges, in the users' 1-based coordinates.
         let at = |x: i64, y: i64| t.cell_1based("cell", x, y).unwrap();
         assert_eq!(t.step(at(1, 1), Move::Left), at(ni, 1));
