@@ -467,7 +467,8 @@ mod tests {
         // Random walks of simulated steps over random searched cells, on
         // lattices small enough for discs to wrap onto themselves: each
         // step by cover_step marks the same cells in the same order, with
-        // the same gain bit for bit, as cover.
+        // the same gain bit for bit, as cover, and step_gain foresees that
+        // gain bit for bit.
         let mut rng = crate::rng::stream(11, 0);
         for n in [3u32, 4, 5, 9] {
             let torus = Torus::new(n).unwrap();
@@ -490,14 +491,141 @@ mod tests {
                 for step in 0..40 {
                     let m = Move::from_index(crate::rng::below(&mut rng, 4));
                     pos = torus.step(pos, m);
+                    let probe = b.step_gain(&sensor, &belief, m, pos);
                     let (ga, gb) = (
                         a.cover(&sensor, &belief, pos),
                         b.cover_step(&sensor, &belief, m, pos),
                     );
                     assert_eq!(ga.to_bits(), gb.to_bits(), "n {n} rv {rv} step {step}");
+                    assert_eq!(probe.to_bits(), gb.to_bits(), "step_gain, step {step}");
                     assert_eq!(a.stack, b.stack, "n {n} rv {rv} step {step}");
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_counted_cover_counts_new_cells_with_mass_and_a_disc_is_covered_when_all_its_cells_are() {
+        // Against a set of covered cells the test keeps itself, over
+        // simulated covers interleaved with real searches, on lattices small
+        // enough for discs to wrap. A third of the masses are zero, so the
+        // count differs from the number of cells marked.
+        let mut rng = crate::rng::stream(13, 0);
+        for n in [3u32, 4, 6, 9] {
+            let torus = Torus::new(n).unwrap();
+            let cells = torus.cells();
+            let weights: Vec<f64> = (0..n * n)
+                .map(|_| match crate::rng::below(&mut rng, 3) {
+                    0 => 0.0,
+                    _ => crate::rng::unit_f64(&mut rng),
+                })
+                .collect();
+            for rv in [0.0, 1.0, 2.0] {
+                let sensor = Sensor::new(&torus, rv).unwrap();
+                let mut belief = weighted(&torus, &weights);
+                let (mut a, mut b) = (Coverage::new(cells), Coverage::new(cells));
+                let (mut seen, mut simulated) = (vec![false; cells], 0);
+                let (mut counted, mut whole) = (0, 0);
+                for round in 0..40 {
+                    let cell = crate::rng::below(&mut rng, n * n);
+                    let all_seen = sensor.around(cell).all(|c| seen[c as usize]);
+                    assert_eq!(
+                        b.disc_covered(&sensor, &belief, cell),
+                        all_seen,
+                        "n {n} rv {rv} round {round}"
+                    );
+                    whole += all_seen as u32;
+                    if round % 4 == 3 {
+                        belief.search_around(&sensor, cell);
+                        sensor.around(cell).for_each(|c| seen[c as usize] = true);
+                        continue;
+                    }
+                    let fresh: Vec<u32> =
+                        sensor.around(cell).filter(|&c| !seen[c as usize]).collect();
+                    let with_mass = fresh
+                        .iter()
+                        .filter(|&&c| belief.plan_mass()[c as usize] > 0.0)
+                        .count() as u32;
+                    let ga = a.cover(&sensor, &belief, cell);
+                    let (gb, count) = b.cover_counted(&sensor, &belief, cell);
+                    assert_eq!(gb.to_bits(), ga.to_bits(), "n {n} rv {rv} round {round}");
+                    assert_eq!(count, with_mass, "n {n} rv {rv} round {round}");
+                    assert_eq!(b.stack, a.stack, "n {n} rv {rv} round {round}");
+                    counted += count;
+                    simulated += fresh.len();
+                    fresh.iter().for_each(|&c| seen[c as usize] = true);
+                    assert!(b.disc_covered(&sensor, &belief, cell));
+                    assert_eq!(b.len(), simulated);
+                }
+                assert!(
+                    counted > 0 && whole > 0 && whole < 40,
+                    "n {n} rv {rv}: both cases"
+                );
+                b.clear();
+                assert!(b.is_empty());
+                for c in 0..n * n {
+                    assert_eq!(b.covered(&belief, c), belief.searched()[c as usize] != 0);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_largest_live_mass_of_each_row_is_the_row_scanned_cell_by_cell() {
+        // Row lengths below, at and between multiples of the eight lanes, so
+        // a row's largest live mass falls in the lanes and in the tail.
+        let mut rng = crate::rng::stream(17, 0);
+        let mut emptied = 0;
+        for n in [3u32, 5, 8, 9, 13, 16, 19] {
+            let torus = Torus::new(n).unwrap();
+            let sensor = Sensor::new(&torus, 1.0).unwrap();
+            let weights: Vec<f64> = (0..n * n)
+                .map(|_| crate::rng::unit_f64(&mut rng) + 0.01)
+                .collect();
+            let mut belief = weighted(&torus, &weights);
+            let mut cov = Coverage::new(torus.cells());
+            let mut rows = vec![f64::NAN; n as usize];
+            for round in 0..2 * n {
+                cov.live_max_rows(&belief, &mut rows);
+                for y in 0..n {
+                    let want = (0..n)
+                        .map(|x| y * n + x)
+                        .filter(|&c| !cov.covered(&belief, c))
+                        .map(|c| belief.plan_mass()[c as usize])
+                        .fold(0.0, f64::max);
+                    let got = cov.live_max_row(&belief, n as usize, y as usize);
+                    assert_eq!(got, want, "n {n} round {round} row {y}");
+                    assert_eq!(rows[y as usize], want, "n {n} round {round} row {y}");
+                    emptied += (want == 0.0) as u32;
+                }
+                belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
+                cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
+            }
+        }
+        assert!(emptied > 0, "some row covered whole");
+    }
+
+    #[test]
+    fn undo_goes_back_to_its_checkpoint_and_no_further() {
+        let torus = Torus::new(9).unwrap();
+        let sensor = Sensor::new(&torus, 1.0).unwrap();
+        let belief = weighted(&torus, &[1.0; 81]);
+        let mut cov = Coverage::new(torus.cells());
+        assert!(cov.is_empty());
+        cov.cover(&sensor, &belief, 0);
+        let (outer, first) = (cov.checkpoint(), cov.stack.clone());
+        assert_eq!(outer, 5);
+        assert!(!cov.is_empty());
+        cov.cover(&sensor, &belief, 40);
+        let inner = cov.checkpoint();
+        cov.cover(&sensor, &belief, 41);
+        assert_eq!((inner, cov.len()), (10, 13));
+        cov.undo(inner);
+        assert_eq!(cov.len(), 10);
+        assert!(cov.covered(&belief, 40) && !cov.covered(&belief, 42));
+        cov.undo(outer);
+        assert_eq!(cov.stack, first);
+        assert!(cov.covered(&belief, 1) && !cov.covered(&belief, 40));
+        assert_eq!((0..81).filter(|&c| cov.covered(&belief, c)).count(), 5);
     }
 }
