@@ -382,3 +382,57 @@ fn compared_completion_is_the_horizon_searchers_path() {
         "stuck {by_stuck} against compared {by_compared}"
     );
 }
+
+/// What the page draws and explains for each belief planner: the planned
+/// path (the intent layer) starts next to the searcher and is a lattice
+/// path, and the decision panel's chosen move is the move made, with a
+/// score. Every step of trial 0 at σ = 2.5 and uniform, N = 20.
+#[test]
+fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes() {
+    use torus_search::episode::{Episode, Status};
+    use torus_search::lattice::Move;
+    for (prior, sigma) in [(PriorKind::Gaussian, 2.5), (PriorKind::Uniform, 0.0)] {
+        for (name, cfg) in planners(20, prior, sigma) {
+            let mut ep = Episode::trial(&cfg, 0).unwrap();
+            let torus = ep.torus().clone();
+            let next_to = |a: u32, b: u32| Move::ALL.into_iter().any(|m| torus.step(a, m) == b);
+            let (mut planned, mut scored, mut steps) = (0, 0, 0);
+            while steps < 300 {
+                let from = ep.position();
+                let status = ep.step_move();
+                steps += 1;
+                let at = ep.position();
+                let made = Move::ALL
+                    .into_iter()
+                    .position(|m| torus.step(from, m) == at);
+                let made = made.unwrap_or_else(|| panic!("{name} step {steps}: not a move"));
+                let plan = ep.intent();
+                if let Some(&first) = plan.first() {
+                    assert!(
+                        next_to(at, first),
+                        "{name} step {steps}: {plan:?} from {at}"
+                    );
+                    assert!(
+                        plan.windows(2).all(|w| next_to(w[0], w[1])),
+                        "{name} {plan:?}"
+                    );
+                    planned += 1;
+                }
+                if let Some(s) = ep.scores() {
+                    assert_eq!(s.chosen as usize, made, "{name} step {steps}");
+                    assert!(!s.score[made].is_nan(), "{name} step {steps}: {s:?}");
+                    scored += 1;
+                }
+                if status != Status::Running {
+                    break;
+                }
+            }
+            println!("{name} {prior:?}: {steps} steps, {planned} planned, {scored} scored");
+            if name == "horizon" {
+                // Its plan holds h − 1 = 3 cells after each move, or a walk
+                // to its far goal, and every first move is scored.
+                assert_eq!((planned, scored), (steps, steps), "{name} {prior:?}");
+            }
+        }
+    }
+}

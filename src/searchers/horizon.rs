@@ -848,4 +848,72 @@ mod tests {
             assert!(tail > 50, "n {n}, σ {sigma}: {tail} greedy moves");
         }
     }
+
+    /// Mass out of the lookahead's reach: a decision heads for it even when
+    /// the far goal is taken only once nothing within reach adds mass, and a
+    /// completion walks there, stopping at its cap, once every cell with
+    /// mass is covered, or once the mass it has not covered is down to what
+    /// `ending_at` allows. Two cells of mass 1/2 on a row, 6 and 13 columns
+    /// from the start.
+    #[test]
+    fn a_completion_heads_for_mass_out_of_reach_and_stops_where_it_is_told() {
+        let torus = Torus::new(20).unwrap();
+        let sensor = Sensor::new(&torus, 1.0).unwrap();
+        let mut weights = vec![0.0; torus.cells()];
+        let (near, far) = (torus.cell(8, 10), torus.cell(15, 10));
+        weights[near as usize] = 1.0;
+        weights[far as usize] = 1.0;
+        let prior = TargetPrior::new(&torus, &PriorSpec::Weights { weights }).unwrap();
+        let mut belief = BeliefState::new(Belief::Posterior, prior, None);
+        let start = torus.cell(2, 10);
+        belief.search_around(&sensor, start);
+        let mut cov = Coverage::new(torus.cells());
+        for far_goal in [FarGoal::Stuck, FarGoal::Compared] {
+            let mut look = Lookahead::new(3);
+            let (m, found, goal) = decide(
+                &mut look,
+                &torus,
+                &sensor,
+                &belief,
+                &mut cov,
+                start,
+                Some(Move::Left),
+                far_goal,
+                Scored::Winner,
+                None,
+            );
+            assert_eq!(found.gain, 0.0, "nothing within 3 moves");
+            assert_eq!(
+                (m, goal),
+                (Move::Right, Some(torus.cell(7, 10))),
+                "{far_goal:?}"
+            );
+            assert!(cov.is_empty());
+        }
+        let mut run = |c: Completion| {
+            let (mut c, mut look, mut out) = (c, Lookahead::new(3), Vec::new());
+            while !c.moves(&mut look, &torus, &sensor, &belief, &mut cov, &mut out, 50) {}
+            assert_eq!(c.made(), out.len());
+            assert!(out
+                .iter()
+                .enumerate()
+                .all(|(i, &p)| p == torus.cell(3 + i as i64, 10)));
+            out.len()
+        };
+        let completion = |cap| Completion::new(&belief, start, None, cap, FarGoal::Stuck);
+        assert_eq!(
+            run(completion(1000)),
+            12,
+            "to (14, 10), whose disc holds the far cell"
+        );
+        for cap in [0, 1, 5, 11] {
+            assert_eq!(run(completion(cap)), cap);
+        }
+        assert_eq!(
+            run(completion(1000).ending_at(0.5)),
+            5,
+            "the near cell found"
+        );
+        assert_eq!(run(completion(1000).ending_at(1.0)), 0, "enough already");
+    }
 }
