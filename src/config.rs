@@ -1669,5 +1669,38 @@ mod tests {
         assert!(c.applicable().contains(&"mu"));
         c.set("prior", "uniform").unwrap();
         assert!(!c.applicable().contains(&"sigma"));
+        // The planners: rollout improvement reads the horizon only through
+        // a base that plays the horizon rule.
+        let planner_keys = [
+            "horizon",
+            "base",
+            "beam_width",
+            "beam_depth",
+            "sweep_pattern",
+        ];
+        let uses = |c: &Config| {
+            let a = c.applicable();
+            planner_keys.map(|k| a.contains(&k))
+        };
+        c.set("searcher", "horizon").unwrap();
+        assert_eq!(uses(&c), [true, false, false, false, false]);
+        c.set("searcher", "beam").unwrap();
+        assert_eq!(uses(&c), [true, false, true, true, false]);
+        c.set("searcher", "sweep").unwrap();
+        assert_eq!(uses(&c), [false, false, false, false, true]);
+        c.set("searcher", "improve").unwrap();
+        for (base, horizon) in [
+            ("cover", false),
+            ("sweep", false),
+            ("horizon", true),
+            ("best", true),
+        ] {
+            c.set("base", base).unwrap();
+            assert_eq!(
+                uses(&c),
+                [horizon, true, false, false, false],
+                "base {base}"
+            );
+        }
     }
 }
