@@ -359,6 +359,19 @@ mod tests {
         BeliefState::new(Belief::Posterior, prior, None)
     }
 
+    /// An `n`-wide lattice, r_v = 1, every cell given a random positive
+    /// weight, nothing searched or simulated.
+    fn positive(n: u32, rng: &mut crate::rng::Rng) -> (Torus, Sensor, BeliefState, Coverage) {
+        let torus = Torus::new(n).unwrap();
+        let sensor = Sensor::new(&torus, 1.0).unwrap();
+        let weights: Vec<f64> = (0..n * n)
+            .map(|_| crate::rng::unit_f64(rng) + 0.01)
+            .collect();
+        let belief = weighted(&torus, &weights);
+        let cov = Coverage::new(torus.cells());
+        (torus, sensor, belief, cov)
+    }
+
     #[test]
     fn a_row_of_gains_is_gain_cell_by_cell_bit_for_bit() {
         // Small lattices, where discs wrap onto themselves, radii from a
@@ -419,13 +432,7 @@ mod tests {
         let mut rng = crate::rng::stream(9, 0);
         let mut rings = Vec::new();
         for n in [3u32, 4, 7, 12] {
-            let torus = Torus::new(n).unwrap();
-            let sensor = Sensor::new(&torus, 1.0).unwrap();
-            let weights: Vec<f64> = (0..n * n)
-                .map(|_| crate::rng::unit_f64(&mut rng) + 0.01)
-                .collect();
-            let mut belief = weighted(&torus, &weights);
-            let mut cov = Coverage::new(torus.cells());
+            let (torus, sensor, mut belief, mut cov) = positive(n, &mut rng);
             for round in 0..4 {
                 for cell in 0..n * n {
                     let (x, y) = torus.xy(cell);
@@ -577,13 +584,7 @@ mod tests {
         let mut rng = crate::rng::stream(17, 0);
         let mut emptied = 0;
         for n in [3u32, 5, 8, 9, 13, 16, 19] {
-            let torus = Torus::new(n).unwrap();
-            let sensor = Sensor::new(&torus, 1.0).unwrap();
-            let weights: Vec<f64> = (0..n * n)
-                .map(|_| crate::rng::unit_f64(&mut rng) + 0.01)
-                .collect();
-            let mut belief = weighted(&torus, &weights);
-            let mut cov = Coverage::new(torus.cells());
+            let (_, sensor, mut belief, mut cov) = positive(n, &mut rng);
             let mut rows = vec![f64::NAN; n as usize];
             for round in 0..2 * n {
                 cov.live_max_rows(&belief, &mut rows);
