@@ -390,22 +390,20 @@ fn compared_completion_is_the_horizon_searchers_path() {
 #[test]
 fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes() {
     use torus_search::episode::{Episode, Status};
-    use torus_search::lattice::Move;
     for (prior, sigma) in [(PriorKind::Gaussian, 2.5), (PriorKind::Uniform, 0.0)] {
         for (name, cfg) in planners(20, prior, sigma) {
             let mut ep = Episode::trial(&cfg, 0).unwrap();
             let torus = ep.torus().clone();
-            let next_to = |a: u32, b: u32| Move::ALL.into_iter().any(|m| torus.step(a, m) == b);
+            let next_to = |a: u32, b: u32| torus.move_to(a, b).is_some();
             let (mut planned, mut scored, mut steps) = (0, 0, 0);
             while steps < 300 {
                 let from = ep.position();
                 let status = ep.step_move();
                 steps += 1;
                 let at = ep.position();
-                let made = Move::ALL
-                    .into_iter()
-                    .position(|m| torus.step(from, m) == at);
-                let made = made.unwrap_or_else(|| panic!("{name} step {steps}: not a move"));
+                let made = torus.move_to(from, at);
+                let made =
+                    made.unwrap_or_else(|| panic!("{name} step {steps}: not a move")) as usize;
                 let plan = ep.intent();
                 if let Some(&first) = plan.first() {
                     assert!(
