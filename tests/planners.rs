@@ -134,6 +134,165 @@ fn exact_mean_matches_sampled_trials() {
     }
 }
 
+/// What rollout improvement is measured against: each base alone, scored
+/// by `base_mean` along the base's own path. The path is a lattice path
+/// from the start that stops at the step cap or once every cell with mass
+/// is covered, its mean is `bound::path_mean` over it, and it is what the
+/// base's rule walks: the coverage walk's moves, the horizon rule's
+/// completion (far goal only when stuck), a lawnmower that skips what is
+/// covered (never slower than the plain sweep, and the same walk on a
+/// uniform prior, where nothing is covered ahead of it), and, with `best`,
+/// the cheapest of the three.
+#[test]
+fn each_base_alone_is_scored_along_its_own_path() {
+    use torus_search::belief::{Belief, BeliefState};
+    use torus_search::bound::path_mean;
+    use torus_search::coverage::Coverage;
+    use torus_search::searchers::plan::{CoverWalk, FarScan};
+    use torus_search::searchers::{completion, FarGoal, Lookahead, SweepPattern};
+    for (n, prior, sigma, cap) in [
+        (16, PriorKind::Gaussian, 2.5, 5000),
+        (13, PriorKind::Uniform, 0.0, 5000),
+        // The cap cuts every base short: Σ_{t<cap} R_t has cap − 1 moves.
+        (16, PriorKind::Gaussian, 4.0, 30),
+        (10, PriorKind::Gaussian, 1.0, 5000),
+    ] {
+        let cfg = Config {
+            step_cap: cap,
+            ..planner("improve", n, prior, sigma)
+        };
+        let g = cfg.game().unwrap();
+        let mut belief = BeliefState::new(Belief::Posterior, g.prior.clone(), None);
+        belief.search_around(&g.sensor, g.start);
+        // Cells with mass the start's disc has not searched.
+        let with_mass = g
+            .prior
+            .mass()
+            .iter()
+            .zip(belief.searched())
+            .filter(|&(&m, &s)| m > 0.0 && s == 0)
+            .count() as u32;
+        let limit = cap as usize - 1;
+        let mut means = Vec::new();
+        for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
+            let case = format!("n={n} {prior} σ={sigma} cap {cap} base {base}");
+            let (mean, path) = base_mean(&cfg, base).unwrap();
+            let walk: Vec<u32> = std::iter::once(g.start)
+                .chain(path.iter().copied())
+                .collect();
+            assert!(
+                walk.windows(2)
+                    .all(|w| g.torus.move_to(w[0], w[1]).is_some()),
+                "{case}: not a lattice path"
+            );
+            let exact = path_mean(&g.torus, &g.sensor, g.prior.mass(), &walk);
+            assert!(
+                (mean - exact.mean).abs() <= 1e-12 * exact.mean,
+                "{case}: {mean} against {} along its path",
+                exact.mean
+            );
+            assert!(path.len() <= limit, "{case}: {} moves", path.len());
+            if path.len() < limit {
+                assert_eq!(exact.uncovered, 0.0, "{case}: stopped early");
+                let before =
+                    path_mean(&g.torus, &g.sensor, g.prior.mass(), &walk[..walk.len() - 1]);
+                assert!(before.uncovered > 0.0, "{case}: a move after the end");
+            } else {
+                assert_eq!(cap, 30, "{case}: capped");
+            }
+            // What the base's rule walks, driven here move by move.
+            let mut cov = Coverage::new(g.torus.cells());
+            let mut own = Vec::new();
+            match base {
+                Base::Cover => {
+                    let (mut walker, mut scan) = (CoverWalk::new(None), FarScan::default());
+                    let (mut p, mut left) = (g.start, with_mass);
+                    while left > 0 && own.len() < limit {
+                        let m = walker
+                            .next_move(&g.torus, &g.sensor, &belief, &cov, p, &mut scan, None);
+                        p = g.torus.step(p, m);
+                        left -= cov.cover_counted(&g.sensor, &belief, p).1;
+                        own.push(p);
+                    }
+                }
+                Base::Horizon => completion(
+                    &mut Lookahead::new(cfg.horizon),
+                    &g.torus,
+                    &g.sensor,
+                    &belief,
+                    &mut cov,
+                    g.start,
+                    None,
+                    limit,
+                    FarGoal::Stuck,
+                    &mut own,
+                ),
+                Base::Sweep => {
+                    let sweep = Config {
+                        sweep_pattern: SweepPattern::Lawnmower,
+                        ..Config {
+                            searcher: searcher("sweep"),
+                            ..cfg.clone()
+                        }
+                    };
+                    let plain = exact_mean(&sweep).unwrap();
+                    println!(
+                        "{case}: {mean:.4} against the plain sweep's {:.4}",
+                        plain.mean
+                    );
+                    assert!(
+                        mean <= plain.mean + 1e-12 * plain.mean,
+                        "{case}: {mean} > {}",
+                        plain.mean
+                    );
+                    if prior == PriorKind::Uniform {
+                        assert!((plain.mean - mean).abs() <= 1e-12 * mean, "{case}");
+                    }
+                    own = path.clone();
+                }
+                Base::Best => {
+                    let cheapest = means.iter().copied().fold(f64::INFINITY, f64::min);
+                    assert_eq!(mean.to_bits(), cheapest.to_bits(), "{case}: {means:?}");
+                    own = path.clone();
+                }
+            }
+            assert_eq!(path, own, "{case}");
+            means.push(mean);
+        }
+    }
+}
+
+/// Rollout improvement plans up to the step cap and no further: with the
+/// cap binding, what is left of its plan after m moves is the moves
+/// m + 1 ..= cap − 1 (`Σ_{t<cap} R_t` counts no later move), for every base,
+/// and it completes nothing for the move at the cap, which counts for nothing.
+#[test]
+fn rollout_improvement_plans_up_to_the_step_cap_and_no_further() {
+    use torus_search::episode::Episode;
+    for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
+        let cfg = Config {
+            base,
+            step_cap: 30,
+            ..planner("improve", 16, PriorKind::Gaussian, 4.0)
+        };
+        let mut ep = Episode::blind(&cfg).unwrap();
+        for m in 1..cfg.step_cap {
+            ep.step_move();
+            assert_eq!(
+                ep.intent().len(),
+                (cfg.step_cap - 1 - m) as usize,
+                "base {base} after {m} moves"
+            );
+        }
+        ep.step_move();
+        let last = ep.scores().unwrap();
+        assert!(
+            last.score.iter().all(|s| s.is_nan()),
+            "base {base}: {last:?}"
+        );
+    }
+}
+
 /// Rollout improvement is never worse than its base, exactly.
 #[test]
 fn rollout_improvement_is_never_worse_than_its_base() {
@@ -149,7 +308,7 @@ fn rollout_improvement_is_never_worse_than_its_base() {
                 ..planner("improve", n, prior, sigma)
             };
             let improved = exact_mean(&cfg).unwrap().mean;
-            let alone = base_mean(&cfg, base).unwrap();
+            let alone = base_mean(&cfg, base).unwrap().0;
             println!("n={n} {prior} σ={sigma} base {base}: {alone:.4} → {improved:.4}");
             assert!(
                 improved <= alone + 1e-9 * alone,
@@ -178,7 +337,7 @@ fn beam_is_never_worse_than_the_horizon_rule() {
                 ..planner("beam", n, prior, sigma)
             };
             let beam = exact_mean(&cfg).unwrap().mean;
-            let rule = base_mean(&cfg, Base::Horizon).unwrap();
+            let rule = base_mean(&cfg, Base::Horizon).unwrap().0;
             println!("n={n} {prior} σ={sigma} width {width} depth {depth}: rule {rule:.4} → beam {beam:.4}");
             assert!(
                 beam <= rule + 1e-9 * rule,

@@ -92,9 +92,24 @@ pub struct Improve {
     pending: Option<Pending>,
     /// The work one slice may spend ([`SLICE_WORK`]).
     slice: u64,
-    /// The work of each slice made (tests check the bound).
+    /// The work and the simulated moves of each slice made, and each
+    /// decision's incumbent cost and cheapest completion (tests check them).
     #[cfg(test)]
-    slice_work: Vec<u64>,
+    log: TestLog,
+}
+
+/// What tests read of an improver's work.
+#[cfg(test)]
+#[derive(Default)]
+struct TestLog {
+    /// Each slice's work, and the moves it simulated (besides each
+    /// completion's first move) and sweep waypoints it skipped.
+    slices: Vec<(u64, u64)>,
+    /// The same count for the slice under way.
+    simulated: u64,
+    /// Each decision: whether it started afresh (no incumbent), the
+    /// incumbent's cost, and the cheapest completion (what it follows).
+    decisions: Vec<(bool, f64, f64)>,
 }
 
 /// The belief at a decision: mass left and cells with mass left.
@@ -163,7 +178,7 @@ impl Improve {
             pending: None,
             slice: SLICE_WORK,
             #[cfg(test)]
-            slice_work: Vec::new(),
+            log: TestLog::default(),
         }
     }
 
@@ -247,6 +262,10 @@ impl Improve {
                     {
                         run.waypoint += 1;
                         *work += 1;
+                        #[cfg(test)]
+                        {
+                            self.log.simulated += 1;
+                        }
                     }
                     *work += COVER_MOVE_WORK;
                     match self
@@ -294,6 +313,10 @@ impl Improve {
             );
             run.p = q;
             run.last = Some(m);
+            #[cfg(test)]
+            {
+                self.log.simulated += 1;
+            }
         }
         true
     }
@@ -419,6 +442,14 @@ impl Improve {
     }
 }
 
+#[cfg(test)]
+impl TestLog {
+    fn end_slice(&mut self, work: u64) {
+        let moves = std::mem::take(&mut self.simulated);
+        self.slices.push((work, moves));
+    }
+}
+
 /// A completion to make: from `pos` with `base` after the move `first`
 /// (`None`: the base's own move), from the belief `start`, of at most
 /// `limit` moves.
@@ -490,14 +521,17 @@ impl Searcher for Improve {
                 d.run = Some(run);
                 self.pending = Some(d);
                 #[cfg(test)]
-                self.slice_work.push(work);
+                self.log.end_slice(work);
                 return None;
             }
             self.finished(&mut d, run.sum.value());
             d.job += 1;
         }
         #[cfg(test)]
-        self.slice_work.push(work);
+        {
+            self.log.end_slice(work);
+            self.log.decisions.push((d.own > 0, d.inc, d.cheapest));
+        }
         if d.improved {
             self.adopt_best();
         }
@@ -553,11 +587,12 @@ impl Searcher for Improve {
 }
 
 /// The exact `Σ_{t<cap} R_t` of `base` alone from the start of `cfg` (what
-/// rollout improvement is never worse than), with the base's path.
+/// rollout improvement is never worse than), with the cells of the base's
+/// path after the start (the cheapest base's, with `best`).
 ///
 /// # Errors
 /// The [`crate::config::ConfigError`] of [`Config::game`].
-pub fn base_mean(cfg: &Config, base: Base) -> Result<f64, crate::config::ConfigError> {
+pub fn base_mean(cfg: &Config, base: Base) -> Result<(f64, Vec<u32>), crate::config::ConfigError> {
     let g = cfg.game()?;
     let belief = {
         let mut b = BeliefState::new(cfg.belief, g.prior.clone(), None);
@@ -575,9 +610,8 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<f64, crate::config::ConfigE
     );
     let start = left_of(&belief);
     let limit = cfg.step_cap.saturating_sub(1) as usize;
-    let bases = imp.bases();
-    let mut best = f64::INFINITY;
-    for &b in bases {
+    let mut best = (f64::INFINITY, Vec::new());
+    for &b in imp.bases() {
         let job = Job {
             pos: g.start,
             first: None,
@@ -585,10 +619,14 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<f64, crate::config::ConfigE
             start,
             limit,
         };
-        best = best.min(imp.complete(&g.torus, &g.sensor, &belief, job));
+        let c = imp.complete(&g.torus, &g.sensor, &belief, job);
+        if c < best.0 {
+            best = (c, imp.scratch.clone());
+        }
     }
     // R_0, the term before any move.
-    Ok(best + if start.cells == 0 { 0.0 } else { start.mass })
+    best.0 += if start.cells == 0 { 0.0 } else { start.mass };
+    Ok(best)
 }
 
 #[cfg(test)]
@@ -599,12 +637,24 @@ mod tests {
     use crate::traces::Traces;
 
     /// What driving an improver for `moves` moves gave: the moves, each
-    /// decision's scores, and the work of every slice.
+    /// decision's scores, the planning mass left after each move (`R_t`,
+    /// `R_0` first), and the improver's log.
     struct Drive {
         moves: Vec<Move>,
         scores: Vec<[f64; 4]>,
         slices_per_move: Vec<usize>,
-        slice_work: Vec<u64>,
+        paid: Vec<f64>,
+        log: TestLog,
+    }
+
+    /// `R_t` at a decision: the planning mass left, 0 once none is.
+    fn r(belief: &BeliefState) -> f64 {
+        let left = left_of(belief);
+        if left.cells == 0 {
+            0.0
+        } else {
+            left.mass
+        }
     }
 
     /// Drives an improver for `cfg` as an episode does, one slice per call,
@@ -622,7 +672,8 @@ mod tests {
             moves: Vec::new(),
             scores: Vec::new(),
             slices_per_move: Vec::new(),
-            slice_work: Vec::new(),
+            paid: vec![r(&belief)],
+            log: TestLog::default(),
         };
         let mut pos = g.start;
         while out.moves.len() < moves {
@@ -650,14 +701,22 @@ mod tests {
                 imp.planning().is_none(),
                 "no decision under way after a move"
             );
+            // Completions start from the first sweep waypoint still adding
+            // mass, none of those before it (re-skipping them in every
+            // completion would cost a decision O(N²) more work).
+            let fresh = Coverage::new(g.torus.cells());
+            let adds = |&w: &u32| fresh.gain(&sensor, &belief, w) > 0.0;
+            let (skipped, next) = imp.sweep.split_at(imp.sweep_from);
+            assert!(!skipped.iter().any(adds) && next.first().is_none_or(adds));
             pos = g.torus.step(pos, m);
             belief.search_around(&sensor, pos);
             imp.observe(&g.torus, m, pos);
             out.moves.push(m);
             out.scores.push(imp.scores().unwrap().score);
             out.slices_per_move.push(slices);
+            out.paid.push(r(&belief));
         }
-        out.slice_work = std::mem::take(&mut imp.slice_work);
+        out.log = std::mem::take(&mut imp.log);
         out
     }
 
@@ -691,11 +750,16 @@ mod tests {
                 // One move's most work: the lookahead at h = 4, or a sweep
                 // move's skipped waypoints, and a far-goal scan of the 1600 cells.
                 let most = budget + 2 * 81 + 1600;
-                let longest = sliced.slice_work.iter().max().unwrap();
+                let longest = sliced.log.slices.iter().map(|s| s.0).max().unwrap();
                 assert!(
-                    *longest <= most,
+                    longest <= most,
                     "base {base}: a slice of {longest} > {most}"
                 );
+                // Every simulated move and every waypoint skipped costs at
+                // least one unit: the work counted bounds what a slice does.
+                for &(work, steps) in &sliced.log.slices {
+                    assert!(steps <= work, "base {base}: {steps} steps for {work} work");
+                }
                 let slices: usize = sliced.slices_per_move.iter().sum();
                 if budget == 500 {
                     assert!(
@@ -705,6 +769,95 @@ mod tests {
                 }
                 eprintln!("base {base}, budget {budget}: {slices} slices for {moves} moves, the longest {longest}");
             }
+        }
+    }
+
+    #[test]
+    fn the_incumbent_is_kept_and_costs_what_was_promised_less_the_move_paid() {
+        // The fortified rollout: the first decision starts from the base's
+        // own path (the cheapest base's, with `best`), whose cost is the
+        // base's mean less R_0; after that the incumbent always holds, and
+        // what is left of it costs what the decision before promised (its
+        // cheapest completion) less the R_t the move just paid. With
+        // `best` on the uniform prior at h = 1 the sweep's own path is the
+        // cheapest (45.86 against 48.61 for the cover walk and the
+        // horizon rule), not the last base's.
+        for (base, prior, sigma, n, h, moves) in [
+            ("cover", "gaussian", "10", "40", "4", 30),
+            ("sweep", "gaussian", "10", "40", "4", 30),
+            ("horizon", "gaussian", "5", "24", "4", 20),
+            ("best", "gaussian", "2.5", "20", "4", 25),
+            ("best", "uniform", "0", "16", "1", 25),
+        ] {
+            let cfg = Config::default().with(&[
+                ("searcher", "improve"),
+                ("base", base),
+                ("horizon", h),
+                ("prior", prior),
+                ("sigma", sigma),
+                ("n", n),
+            ]);
+            let d = drive(&cfg, u64::MAX, moves);
+            let case = format!("base {base} {prior} σ = {sigma}");
+            let decided = &d.log.decisions;
+            assert_eq!(decided.len(), moves, "{case}");
+            let (fresh, inc, cheapest) = decided[0];
+            let alone = base_mean(&cfg, cfg.base).unwrap().0;
+            assert!(fresh && cheapest <= inc, "{case}: {:?}", decided[0]);
+            assert!(
+                (inc - (alone - d.paid[0])).abs() <= 1e-12 * alone,
+                "{case}: the first incumbent costs {inc}, the base {alone} less R_0 {}",
+                d.paid[0]
+            );
+            for (k, w) in decided.windows(2).enumerate() {
+                let ((_, _, promised), (fresh, inc, cheapest)) = (w[0], w[1]);
+                let paid = d.paid[k + 1];
+                assert!(!fresh, "{case}: decision {} started afresh", k + 1);
+                assert!(
+                    (inc - (promised - paid)).abs() <= 1e-12 * promised,
+                    "{case}: decision {}: the incumbent costs {inc}, {promised} was promised and {paid} paid",
+                    k + 1
+                );
+                assert!(cheapest <= inc, "{case}");
+            }
+            eprintln!(
+                "{case}: the base {alone:.4}, promised at the first move {:.4}",
+                d.paid[0] + decided[0].2
+            );
+        }
+    }
+
+    #[test]
+    fn with_every_base_each_move_scores_its_cheapest_completion() {
+        // At the first move (the same state whatever the base) `best`
+        // scores each move by the cheapest of the three bases' completions.
+        for sigma in ["2.5", "10"] {
+            let first = |base| {
+                let cfg = Config::default().with(&[
+                    ("searcher", "improve"),
+                    ("base", base),
+                    ("horizon", "3"),
+                    ("sigma", sigma),
+                    ("n", "24"),
+                ]);
+                drive(&cfg, u64::MAX, 1).scores[0]
+            };
+            let singles = ["cover", "sweep", "horizon"].map(first);
+            let best = first("best");
+            for m in 0..4 {
+                let each = singles.map(|s| s[m]);
+                let cheapest = each.iter().copied().fold(f64::INFINITY, f64::min);
+                assert_eq!(
+                    best[m].to_bits(),
+                    cheapest.to_bits(),
+                    "σ = {sigma}, move {m}: {each:?}"
+                );
+            }
+            // Some move is scored by a base other than the first.
+            assert!(
+                (0..4).any(|m| singles[0][m] > best[m]),
+                "σ = {sigma}: {singles:?}"
+            );
         }
     }
 }
