@@ -545,15 +545,20 @@ fn compared_completion_is_the_horizon_searchers_path() {
 /// What the page draws and explains for each belief planner: the planned
 /// path (the intent layer) starts next to the searcher and is a lattice
 /// path, and the decision panel's chosen move is the move made, with a
-/// score. Every step of trial 0 at σ = 2.5 and uniform, N = 20.
+/// score. Every step of trial 0 at σ = 2.5 and uniform, N = 20. The sweep
+/// shows the next 2N cells of its path.
 #[test]
 fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes() {
     use torus_search::episode::{Episode, Status};
+    use torus_search::searchers::sweep_path;
     for (prior, sigma) in [(PriorKind::Gaussian, 2.5), (PriorKind::Uniform, 0.0)] {
         for (name, cfg) in planners(20, prior, sigma) {
             let mut ep = Episode::trial(&cfg, 0).unwrap();
             let torus = ep.torus().clone();
             let next_to = |a: u32, b: u32| torus.move_to(a, b).is_some();
+            let mut sweep = Vec::new();
+            let g = cfg.game().unwrap();
+            sweep_path(&torus, &g.sensor, g.start, cfg.sweep_pattern, &mut sweep);
             let (mut planned, mut scored, mut steps) = (0, 0, 0);
             while steps < 300 {
                 let from = ep.position();
@@ -564,6 +569,10 @@ fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes(
                 let made =
                     made.unwrap_or_else(|| panic!("{name} step {steps}: not a move")) as usize;
                 let plan = ep.intent();
+                if name == "sweep" {
+                    let rest = &sweep[steps.min(sweep.len())..];
+                    assert_eq!(plan, &rest[..rest.len().min(40)], "step {steps}");
+                }
                 if let Some(&first) = plan.first() {
                     assert!(
                         next_to(at, first),

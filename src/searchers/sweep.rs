@@ -149,7 +149,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_sweep_covers_the_torus_with_unit_moves() {
+    fn a_sweep_covers_the_torus_with_unit_moves_and_ends_when_it_has() {
         for n in [3, 4, 5, 7, 10, 40] {
             for rv in [0.0, 1.0, 1.5, 2.0] {
                 for pattern in SweepPattern::ALL {
@@ -163,14 +163,29 @@ mod tests {
                     for c in sensor.around(start) {
                         seen[c as usize] = true;
                     }
-                    for &q in &path {
+                    let mut full_at = None;
+                    for (i, &q) in path.iter().enumerate() {
                         assert_eq!(torus.l1(p, q), 1, "n={n} rv={rv} {pattern}");
                         p = q;
                         for c in sensor.around(q) {
                             seen[c as usize] = true;
                         }
+                        if full_at.is_none() && seen.iter().all(|&s| s) {
+                            full_at = Some(i);
+                        }
                     }
                     assert!(seen.iter().all(|&s| s), "n={n} rv={rv} {pattern}");
+                    // It ends once the torus is covered: at its last cell,
+                    // or (r_v = 1.5, whose disc reaches diagonally) the one
+                    // before. Only at N = 3, where such a disc covers every
+                    // cell from the start, does it walk on.
+                    if n > 3 {
+                        let (at, len) = (full_at.unwrap(), path.len());
+                        assert!(
+                            at + 2 >= len,
+                            "n={n} rv={rv} {pattern}: covered at {at} of {len}"
+                        );
+                    }
                 }
             }
         }
