@@ -103,3 +103,20 @@ impl Budget {
         self.spent
     }
 }
+
+#[cfg(all(test, not(target_arch = "wasm32")))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_native_clock_counts_milliseconds() {
+        // A budget of `ms` milliseconds must last that long: after a 25 ms
+        // sleep the clock has advanced by at least 25 (a clock in seconds,
+        // or a constant, would show 0.025 or 0) and by less than 10 000
+        // (one in microseconds would show 25 000).
+        let t0 = default_clock();
+        std::thread::sleep(std::time::Duration::from_millis(25));
+        let dt = default_clock() - t0;
+        assert!((25.0..10_000.0).contains(&dt), "{dt} ms for a 25 ms sleep");
+    }
+}
