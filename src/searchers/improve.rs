@@ -119,6 +119,18 @@ struct Left {
     cells: u32,
 }
 
+impl Left {
+    /// `R_t` with this much left: the mass, exactly 0 once every cell with
+    /// mass is covered (the running difference would leave rounding dust).
+    fn r(self) -> f64 {
+        if self.cells == 0 {
+            0.0
+        } else {
+            self.mass
+        }
+    }
+}
+
 fn left_of(belief: &BeliefState) -> Left {
     let mut mass = Sum::default();
     let mut cells = 0;
@@ -150,8 +162,7 @@ fn advance(
     left.mass -= g;
     left.cells -= c;
     path.push(q);
-    // Exactly 0 once every cell with mass is covered (no rounding dust).
-    sum.add(if left.cells == 0 { 0.0 } else { left.mass });
+    sum.add(left.r());
 }
 
 impl Improve {
@@ -338,7 +349,7 @@ impl Improve {
             let (g, c) = self.cov.cover_counted(sensor, belief, q);
             left.mass -= g;
             left.cells -= c;
-            sum.add(if left.cells == 0 { 0.0 } else { left.mass });
+            sum.add(left.r());
         }
         sum.value()
     }
@@ -625,7 +636,7 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<(f64, Vec<u32>), crate::con
         }
     }
     // R_0, the term before any move.
-    best.0 += if start.cells == 0 { 0.0 } else { start.mass };
+    best.0 += start.r();
     Ok(best)
 }
 
@@ -647,16 +658,6 @@ mod tests {
         log: TestLog,
     }
 
-    /// `R_t` at a decision: the planning mass left, 0 once none is.
-    fn r(belief: &BeliefState) -> f64 {
-        let left = left_of(belief);
-        if left.cells == 0 {
-            0.0
-        } else {
-            left.mass
-        }
-    }
-
     /// Drives an improver for `cfg` as an episode does, one slice per call,
     /// with slices of at most `slice` work.
     fn drive(cfg: &Config, slice: u64, moves: usize) -> Drive {
@@ -672,7 +673,7 @@ mod tests {
             moves: Vec::new(),
             scores: Vec::new(),
             slices_per_move: Vec::new(),
-            paid: vec![r(&belief)],
+            paid: vec![left_of(&belief).r()],
             log: TestLog::default(),
         };
         let mut pos = g.start;
@@ -714,7 +715,7 @@ mod tests {
             out.moves.push(m);
             out.scores.push(imp.scores().unwrap().score);
             out.slices_per_move.push(slices);
-            out.paid.push(r(&belief));
+            out.paid.push(left_of(&belief).r());
         }
         out.log = std::mem::take(&mut imp.log);
         out
