@@ -582,13 +582,6 @@ impl BeliefTree {
             }
         }
     }
-
-    /// The root's visits, mean return and return range, for tests.
-    #[cfg(test)]
-    fn root_stats(&self) -> (u32, f64, f64, f64) {
-        let r = &self.nodes[0];
-        (r.visits, r.sum / r.visits.max(1) as f64, r.lo, r.hi)
-    }
 }
 
 impl Stats for BeliefTree {
@@ -1247,13 +1240,13 @@ mod tests {
         hand.run(&mut tree, start, 200);
         let m = Move::Right;
         let kid = tree.nodes[0].children[m as usize];
-        let before = tree.nodes[kid as usize];
-        assert!(before.visits > 10);
+        let before = tree.clone();
+        assert!(before.nodes[kid as usize].visits > 10);
         let old_mass = hand.belief.remaining();
         tree.advance(m);
         // The child is the root now, with its visits and its returns.
-        assert_eq!(tree.nodes[0].visits, before.visits);
-        assert_eq!(tree.nodes[0].sum, before.sum);
+        assert_eq!(tree.nodes[0].visits, before.nodes[kid as usize].visits);
+        assert_eq!(tree.nodes[0].sum, before.nodes[kid as usize].sum);
         assert_eq!(
             tree.intent().first(),
             tree.nodes[0]
@@ -1267,18 +1260,44 @@ mod tests {
         let to = hand.game.torus.step(start, m);
         hand.belief.search_around(&hand.sensor, to);
         tree.begin_decision(to, false);
-        let report = hand.run(&mut tree, to, 1);
-        // One more loop, and the kept returns mapped by G -> (G - 1)·M/M'.
-        let (visits, mean, lo, hi) = tree.root_stats();
-        assert_eq!(visits, before.visits + 1);
+        let g = hand.run(&mut tree, to, 1).reward;
+        // One more loop, and every kept return mapped by G -> (G - 1)·M/M'
+        // (the kept subtree walked in step with the old one, child by
+        // child); the nodes on the new loop's path also count its return.
         let k = old_mass / hand.belief.remaining();
-        let want = ((before.sum - before.visits as f64) * k + report.reward) / visits as f64;
-        assert!(
-            (mean - want).abs() < 1e-9 * want.abs().max(1.0),
-            "{mean} vs {want}"
-        );
-        assert!(lo <= ((before.lo - 1.0) * k).min(report.reward) + 1e-9);
-        assert!(hi >= ((before.hi - 1.0) * k).max(report.reward) - 1e-9);
+        assert!(k > 1.0, "the move searched new mass: {k}");
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+        let mut pairs = vec![(kid, 0u32)];
+        let mut checked = 0;
+        while let Some((o, n)) = pairs.pop() {
+            let (was, now) = (before.nodes[o as usize], tree.nodes[n as usize]);
+            assert_eq!(now.cell, was.cell);
+            let on = tree.path.contains(&n);
+            let (mut sum, mut lo, mut hi) = (
+                (was.sum - was.visits as f64) * k,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            );
+            if was.visits > 0 {
+                (lo, hi) = ((was.lo - 1.0) * k, (was.hi - 1.0) * k);
+            }
+            if on {
+                (sum, lo, hi) = (sum + g, lo.min(g), hi.max(g));
+            }
+            assert_eq!(now.visits, was.visits + on as u32, "node {n}");
+            assert!(close(now.sum, sum), "node {n}: sum {} vs {sum}", now.sum);
+            assert!(close(now.lo, lo), "node {n}: lo {} vs {lo}", now.lo);
+            assert!(close(now.hi, hi), "node {n}: hi {} vs {hi}", now.hi);
+            for i in 0..4 {
+                match (was.children[i], now.children[i]) {
+                    (NONE, c) => assert!(c == NONE || tree.path.contains(&c), "node {n}"),
+                    (a, b) => pairs.push((a, b)),
+                }
+            }
+            checked += 1;
+        }
+        assert!(checked > 20, "{checked} kept nodes");
+        assert_eq!(tree.nodes[0].visits, before.nodes[kid as usize].visits + 1);
     }
 
     #[test]
