@@ -1366,6 +1366,43 @@ mod tests {
     }
 
     #[test]
+    fn each_scale_values_a_child_as_documented() {
+        // The root saw returns 10, 20, 30 and 60 (mean 30, range [10, 60]);
+        // the child 20 and 30 (mean 25, best 20).
+        let node = |cell, sum, visits, lo, hi| Node {
+            sum,
+            visits,
+            lo,
+            hi,
+            ..Node::leaf(cell)
+        };
+        let child = node(1, 50.0, 2, 20.0, 30.0);
+        let mut tree = BeliefTree::new(16, 64, Scale::Range, 0.0, 10, 0);
+        tree.nodes = vec![node(0, 120.0, 4, 10.0, 60.0), child];
+        fn value(tree: &mut BeliefTree, scale: Scale, n: &Node) -> f64 {
+            tree.scale = scale;
+            tree.value(n)
+        }
+        // (G_max − Ḡ)/(G_max − G_min), (G_max − G_lo)/(…), 1 − Ḡ/Ḡ_root.
+        assert_eq!(value(&mut tree, Scale::Range, &child), 0.7);
+        assert_eq!(value(&mut tree, Scale::Best, &child), 0.8);
+        assert!((value(&mut tree, Scale::Left, &child) - (1.0 - 25.0 / 30.0)).abs() < 1e-15);
+        // A child no loop went through is worth nothing, under every scale.
+        let unseen = Node::leaf(2);
+        for scale in [Scale::Range, Scale::Best, Scale::Left] {
+            assert_eq!(value(&mut tree, scale, &unseen), 0.0, "{scale:?}");
+        }
+        // Every return alike: no range to scale by, every visited child is
+        // worth the most; and with no steps left, `left` has nothing to
+        // divide by.
+        tree.nodes[0] = node(0, 0.0, 4, 0.0, 0.0);
+        let same = node(1, 0.0, 2, 0.0, 0.0);
+        assert_eq!(value(&mut tree, Scale::Range, &same), 1.0);
+        assert_eq!(value(&mut tree, Scale::Best, &same), 1.0);
+        assert_eq!(value(&mut tree, Scale::Left, &same), 0.0);
+    }
+
+    #[test]
     fn the_decision_view_is_the_uct_split_selection_used() {
         let ep = moved(&cfg(5.0), 3);
         let d = ep.decision().unwrap();
