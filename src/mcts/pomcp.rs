@@ -1301,6 +1301,42 @@ mod tests {
     }
 
     #[test]
+    fn a_decision_counts_its_own_selections_and_the_tree_stays_within_its_limit() {
+        // The decision panel's `selected` counts the root's children chosen
+        // by this decision's loops, one per loop; a full tree grows no
+        // further, and its loops still count.
+        let mut hand = Hand::new(cfg(5.0), 4);
+        let (start, torus) = (hand.game.start, hand.game.torus.clone());
+        let max = 40;
+        let mut tree = BeliefTree::new(torus.cells(), max, Scale::Best, 0.0, 30, 0);
+        let c = hand.c.c;
+        let selected = |tree: &BeliefTree, root| -> u32 {
+            let view = tree.view(&torus, root, c);
+            view.children.iter().map(|ch| ch.selected).sum()
+        };
+        tree.begin_decision(start, false);
+        hand.run(&mut tree, start, 10);
+        assert_eq!(selected(&tree, start), 10);
+        assert!(tree.nodes.len() < max as usize);
+        let report = hand.run(&mut tree, start, 200);
+        assert!(report.counts);
+        assert_eq!(tree.nodes.len(), max as usize, "the tree fills and stops");
+        assert_eq!(tree.nodes[0].visits, 210);
+        assert_eq!(selected(&tree, start), 210);
+        let m = Move::Right;
+        let kept = tree.nodes[tree.nodes[0].children[m as usize] as usize].visits;
+        assert!(kept > 5);
+        tree.advance(m);
+        let to = torus.step(start, m);
+        hand.belief.search_around(&hand.sensor, to);
+        tree.begin_decision(to, false);
+        hand.run(&mut tree, to, 5);
+        assert_eq!(tree.nodes[0].visits, kept + 5);
+        assert_eq!(selected(&tree, to), 5, "only this decision's loops");
+        assert!(tree.nodes.len() <= max as usize);
+    }
+
+    #[test]
     fn the_reference_tail_is_what_the_walk_still_spent_scaled_to_the_mass_left() {
         let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10, 0);
         tree.ref_r = vec![0.8, 0.5, 0.2, 0.0];
