@@ -1045,6 +1045,17 @@ mod tests {
 
         /// Runs `loops` loops of `tree` from `root`; returns the last report.
         fn run(&mut self, tree: &mut BeliefTree, root: u32, loops: u32) -> LoopReport {
+            self.run_capped(tree, root, loops, 10_000)
+        }
+
+        /// [`Hand::run`] with rollouts of at most `cap` moves.
+        fn run_capped(
+            &mut self,
+            tree: &mut BeliefTree,
+            root: u32,
+            loops: u32,
+            cap: u32,
+        ) -> LoopReport {
             let mut report = None;
             for _ in 0..loops {
                 let practice = self.belief.posterior_target(&mut self.rng);
@@ -1057,7 +1068,7 @@ mod tests {
                     practice,
                     policy: &mut self.policy,
                     rng: &mut self.rng,
-                    rollout_cap: 10_000,
+                    rollout_cap: cap,
                     c: self.c.c,
                     trace: None,
                 };
@@ -1334,6 +1345,30 @@ mod tests {
         assert_eq!(tree.nodes[0].visits, kept + 5);
         assert_eq!(selected(&tree, to), 5, "only this decision's loops");
         assert!(tree.nodes.len() <= max as usize);
+    }
+
+    #[test]
+    fn a_rollout_stops_at_the_rollout_cap() {
+        // Counting every R_t exactly and never cut, a rollout runs until all
+        // mass is covered, far more than 7 moves at N = 40: each loop's
+        // rollout is then exactly the cap, wherever its tree part ended.
+        let mut hand = Hand::new(cfg(5.0), 6);
+        let start = hand.game.start;
+        let mut tree = BeliefTree::new(
+            hand.game.torus.cells(),
+            1 << 12,
+            Scale::Best,
+            0.0,
+            10_000,
+            0,
+        );
+        tree.begin_decision(start, false);
+        for cap in [1, 7, 40] {
+            for _ in 0..20 {
+                let report = hand.run_capped(&mut tree, start, 1, cap);
+                assert_eq!(report.rollout_steps, cap);
+            }
+        }
     }
 
     #[test]
