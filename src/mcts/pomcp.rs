@@ -1372,6 +1372,28 @@ mod tests {
     }
 
     #[test]
+    fn with_pomcp_exact_1_a_loop_returns_the_practice_targets_detection_time() {
+        // Plain POMCP: no R_t is counted exactly, and a loop's return is
+        // the move at which its practice target was detected (or, when the
+        // rollout cap comes first, the moves it made).
+        let mut hand = Hand::new(cfg(5.0), 8);
+        let start = hand.game.start;
+        let mut tree = BeliefTree::new(hand.game.torus.cells(), 1 << 12, Scale::Best, 1.0, 25, 0);
+        tree.begin_decision(start, false);
+        let mut detected = 0;
+        for cap in [10_000, 30] {
+            for _ in 0..100 {
+                let report = hand.run_capped(&mut tree, start, 1, cap);
+                let moves = tree.path.len() - 1 + report.rollout_steps as usize;
+                assert_eq!(report.reward, moves as f64);
+                assert!(report.detected || report.rollout_steps == cap);
+                detected += report.detected as u32;
+            }
+        }
+        assert!(detected > 100, "{detected} of 200 loops detected");
+    }
+
+    #[test]
     fn the_reference_tail_is_what_the_walk_still_spent_scaled_to_the_mass_left() {
         let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10, 0);
         tree.ref_r = vec![0.8, 0.5, 0.2, 0.0];
