@@ -1394,6 +1394,90 @@ mod tests {
     }
 
     #[test]
+    fn a_decision_checks_the_children_that_beat_the_best_so_far_and_takes_the_cheapest() {
+        // After the loops, children are taken by best return, ascending;
+        // one whose best return beats the cheapest exact path so far (the
+        // plan's, at first) is checked: its best line completed by the plan
+        // walk and counted exactly becomes its best return (the plan's
+        // child: never above the plan's). Other children keep theirs. The
+        // cheapest path becomes the plan and its first move is played.
+        let mut hand = Hand::new(cfg(5.0), 11);
+        let (torus, sensor) = (hand.game.torus.clone(), hand.game.sensor.clone());
+        let cap = 10_000;
+        let mut tree = BeliefTree::new(torus.cells(), 1 << 12, Scale::Best, 0.0, 25, 5);
+        let mut root = hand.game.start;
+        let (mut checked, mut skipped, mut adopted) = (0, 0, 0);
+        let (mut cov, mut line, mut out) = (Coverage::new(torus.cells()), Vec::new(), Vec::new());
+        for _ in 0..8 {
+            tree.begin_decision(root, false);
+            hand.run(&mut tree, root, 100);
+            let (plan_cost, plan) = (tree.plan_cost, tree.plan[tree.plan_at..].to_vec());
+            let on_plan = tree.plan_move(&torus, root).expect("the plan goes on");
+            let lo = |t: &BeliefTree, i: usize| match t.nodes[0].children[i] {
+                NONE => f64::INFINITY,
+                k => t.nodes[k as usize].lo,
+            };
+            let before: Vec<f64> = (0..4).map(|i| lo(&tree, i)).collect();
+            let hi = tree.nodes[0].hi;
+            let mass = hand.belief.remaining();
+            let exact: Vec<f64> = (0..4)
+                .map(|i| {
+                    tree.best_line(i, &mut line);
+                    let b = &hand.belief;
+                    follow_plan(
+                        &torus, &sensor, b, mass, cap, &mut cov, &plan, root, &line, &mut out, None,
+                    )
+                })
+                .collect();
+            let m = tree
+                .conclude(&torus, &sensor, &hand.belief, cap)
+                .expect("a plan's move");
+            let mut order = [0, 1, 2, 3];
+            order.sort_by(|&a, &b| before[a].total_cmp(&before[b]));
+            let (mut best, mut chosen) = (plan_cost, on_plan);
+            let (mut want_hi, mut seen) = (hi, [false; 4]);
+            for i in order {
+                if before[i] < best {
+                    let want = if i == on_plan {
+                        exact[i].min(plan_cost)
+                    } else {
+                        exact[i]
+                    };
+                    assert_eq!(lo(&tree, i), want, "checked child {i}");
+                    want_hi = want_hi.max(exact[i]);
+                    (seen[i], checked) = (true, checked + 1);
+                    if exact[i] < best {
+                        (best, chosen) = (exact[i], i);
+                    }
+                }
+            }
+            for i in (0..4).filter(|&i| !seen[i] && before[i].is_finite()) {
+                // The plan's child, played: its best return is at most the plan's.
+                let want = if i == chosen {
+                    before[i].min(best)
+                } else {
+                    before[i]
+                };
+                assert_eq!(lo(&tree, i), want, "child {i}, not checked");
+                skipped += 1;
+            }
+            assert_eq!(m, Move::ALL[chosen]);
+            assert_eq!(tree.plan_cost, best);
+            adopted += (chosen != on_plan) as u32;
+            assert_eq!(tree.nodes[0].hi, want_hi);
+            let floor = (0..4).map(|i| lo(&tree, i)).fold(f64::INFINITY, f64::min);
+            assert_eq!(tree.nodes[0].lo, floor);
+            tree.advance(m);
+            root = torus.step(root, m);
+            hand.belief.search_around(&hand.sensor, root);
+        }
+        assert!(
+            checked > 0 && skipped > 0 && adopted > 0,
+            "{checked} {skipped} {adopted}"
+        );
+    }
+
+    #[test]
     fn the_reference_tail_is_what_the_walk_still_spent_scaled_to_the_mass_left() {
         let mut tree = BeliefTree::new(16, 64, Scale::Best, 0.0, 10, 0);
         tree.ref_r = vec![0.8, 0.5, 0.2, 0.0];
