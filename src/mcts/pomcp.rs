@@ -1155,6 +1155,48 @@ mod tests {
     }
 
     #[test]
+    fn a_followed_plan_stops_at_the_cap() {
+        // The plan walk from the start follows the plan cell by cell, for
+        // exactly `cap` moves when the plan is longer; the return is
+        // 1 + Σ R_t over them.
+        let h = Hand::new(cfg(5.0), 0);
+        let (torus, sensor, belief) = (&h.game.torus, &h.game.sensor, &h.belief);
+        let (root, mass) = (h.game.start, belief.remaining());
+        let (mut look, mut cov) = (Lookahead::new(h.c.pomcp_plan), Coverage::new(torus.cells()));
+        let mut plan = Vec::new();
+        let mut run = first_plan(belief, root, 10_000);
+        while !run.moves(
+            &mut look,
+            torus,
+            sensor,
+            belief,
+            &mut cov,
+            &mut plan,
+            u64::MAX,
+        ) {}
+        assert!(plan.len() > 100);
+        for cap in [1, 7, 40] {
+            let (mut out, mut rs) = (Vec::new(), Vec::new());
+            let g = follow_plan(
+                torus,
+                sensor,
+                belief,
+                mass,
+                cap,
+                &mut cov,
+                &plan,
+                root,
+                &[],
+                &mut out,
+                Some(&mut rs),
+            );
+            assert_eq!(out[..], plan[..cap as usize], "cap {cap}");
+            assert_eq!(rs.len(), cap as usize);
+            assert_eq!(g, rs.iter().fold(1.0, |acc, r| acc + r));
+        }
+    }
+
+    #[test]
     fn a_later_trial_recalls_the_plan_an_earlier_one_made_and_plays_as_if_it_made_it() {
         // Every trial of a configuration starts from the same belief and
         // cell, so the first trial's plan is kept and the others recall it:
