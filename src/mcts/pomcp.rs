@@ -1393,7 +1393,9 @@ mod tests {
     fn a_rollout_stops_at_the_rollout_cap() {
         // Counting every R_t exactly and never cut, a rollout runs until all
         // mass is covered, far more than 7 moves at N = 40: each loop's
-        // rollout is then exactly the cap, wherever its tree part ended.
+        // rollout is then exactly the cap, wherever its tree part ended. So
+        // is the reference (with no plan, a coverage walk from the root),
+        // made as a decision starts.
         let mut hand = Hand::new(cfg(5.0), 6);
         let start = hand.game.start;
         let mut tree = BeliefTree::new(
@@ -1404,12 +1406,13 @@ mod tests {
             10_000,
             0,
         );
-        tree.begin_decision(start, false);
         for cap in [1, 7, 40] {
+            tree.begin_decision(start, false);
             for _ in 0..20 {
                 let report = hand.run_capped(&mut tree, start, 1, cap);
                 assert_eq!(report.rollout_steps, cap);
             }
+            assert_eq!(tree.ref_r.len(), cap as usize);
         }
     }
 
