@@ -1283,6 +1283,26 @@ mod tests {
     }
 
     #[test]
+    fn with_no_plan_a_decision_makes_none_and_loops_at_once() {
+        // `pomcp_plan` 0: the first think call already runs its loop, no
+        // plan is made or shown, and the line drawn is the tree's.
+        let mut c = cfg(5.0);
+        c.pomcp_plan = 0;
+        let mut ep = Episode::blind(&c).unwrap();
+        assert!(!ep.step_loops(1));
+        assert!(ep.planning().is_none());
+        assert_eq!(ep.counters().rollouts, 1);
+        while !ep.step_loops(50) {
+            assert!(ep.planning().is_none());
+        }
+        assert!(ep.counters().rollouts >= c.loops as u64);
+        assert!(
+            ep.intent().len() < MAX_INTENT,
+            "the tree's line, not a plan"
+        );
+    }
+
+    #[test]
     fn the_kept_subtree_survives_a_real_move_rescaled() {
         // Unit-level: build a tree by hand through the Stats interface.
         let mut hand = Hand::new(cfg(5.0), 5);
