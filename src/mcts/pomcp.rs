@@ -1107,7 +1107,7 @@ mod tests {
             let cut_at = |end: f64| make(plan_maker(belief, root, cap).ending_at(mass * end));
             let cut = make(first_plan(belief, root, cap));
             assert_eq!(cut[..], whole[..cut.len()]);
-            let walk = |plan: &[u32], prefix: &[u32]| {
+            let walk_to = |cap: u32, plan: &[u32], prefix: &[u32]| {
                 let (mut cov, mut out, mut rs) =
                     (Coverage::new(torus.cells()), Vec::new(), Vec::new());
                 let g = follow_plan(
@@ -1129,6 +1129,7 @@ mod tests {
                     rs.iter().map(|r| r.to_bits()).collect::<Vec<_>>(),
                 )
             };
+            let walk = |plan: &[u32], prefix: &[u32]| walk_to(cap, plan, prefix);
             // Tree lines that leave the plan at once, and later.
             let away = torus.step(root, Move::Left);
             let lines = [
@@ -1151,48 +1152,16 @@ mod tests {
                 // A cut a thousand times earlier is seen: the walk runs out of plan.
                 assert!(walk(&cut_at(PLAN_END * 1e3), &[]) != walk(&whole, &[]));
             }
-        }
-    }
-
-    #[test]
-    fn a_followed_plan_stops_at_the_cap() {
-        // The plan walk from the start follows the plan cell by cell, for
-        // exactly `cap` moves when the plan is longer; the return is
-        // 1 + Σ R_t over them.
-        let h = Hand::new(cfg(5.0), 0);
-        let (torus, sensor, belief) = (&h.game.torus, &h.game.sensor, &h.belief);
-        let (root, mass) = (h.game.start, belief.remaining());
-        let (mut look, mut cov) = (Lookahead::new(h.c.pomcp_plan), Coverage::new(torus.cells()));
-        let mut plan = Vec::new();
-        let mut run = first_plan(belief, root, 10_000);
-        while !run.moves(
-            &mut look,
-            torus,
-            sensor,
-            belief,
-            &mut cov,
-            &mut plan,
-            u64::MAX,
-        ) {}
-        assert!(plan.len() > 100);
-        for cap in [1, 7, 40] {
-            let (mut out, mut rs) = (Vec::new(), Vec::new());
-            let g = follow_plan(
-                torus,
-                sensor,
-                belief,
-                mass,
-                cap,
-                &mut cov,
-                &plan,
-                root,
-                &[],
-                &mut out,
-                Some(&mut rs),
-            );
-            assert_eq!(out[..], plan[..cap as usize], "cap {cap}");
-            assert_eq!(rs.len(), cap as usize);
-            assert_eq!(g, rs.iter().fold(1.0, |acc, r| acc + r));
+            // From the start the walk follows the plan cell by cell, for
+            // exactly `cap` moves when the plan is longer, and returns
+            // 1 + Σ R_t over them.
+            for cap in [1, 7, 40] {
+                let (g, out, rs) = walk_to(cap, &whole, &[]);
+                assert_eq!(out[..], whole[..cap as usize], "cap {cap}");
+                assert_eq!(rs.len(), cap as usize);
+                let sum = rs.iter().fold(1.0, |acc, &r| acc + f64::from_bits(r));
+                assert_eq!(f64::from_bits(g), sum);
+            }
         }
     }
 
