@@ -269,6 +269,25 @@ mod tests {
     }
 
     #[test]
+    fn a_rollout_cap_below_the_cell_count_sizes_the_loop_list_by_the_cap() {
+        // A loop marks at most cap + 2 distinct cells (root, neighbour,
+        // rollout), written into a list sized by the cap when the cap is
+        // below the cell count (debug builds check every write's slot).
+        for cap in [1, 3] {
+            let mut c = crate::config::Config::default();
+            c.set("variant", "cells").unwrap();
+            (c.rollout_cap, c.seed, c.loops) = (cap, 7, 50);
+            let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
+            for _ in 0..5 {
+                ep.step_move();
+            }
+            let n = ep.counters();
+            assert!(n.rollouts >= 250, "cap {cap}: {} loops", n.rollouts);
+            assert!(n.rollout_steps <= cap as u64 * n.rollouts, "cap {cap}");
+        }
+    }
+
+    #[test]
     fn decay_fades_counts_and_keeps_means() {
         let mut t = table(0.8);
         t.belief_changed();
