@@ -269,10 +269,11 @@ mod tests {
     }
 
     #[test]
-    fn a_rollout_cap_below_the_cell_count_sizes_the_loop_list_by_the_cap() {
+    fn a_loops_list_of_marked_cells_holds_every_write() {
         // A loop marks at most cap + 2 distinct cells (root, neighbour,
         // rollout), written into a list sized by the cap when the cap is
         // below the cell count (debug builds check every write's slot).
+        // Every test's cap used to exceed the cell count.
         for cap in [1, 3] {
             let mut c = crate::config::Config::default();
             c.set("variant", "cells").unwrap();
@@ -285,6 +286,18 @@ mod tests {
             assert!(n.rollouts >= 250, "cap {cap}: {} loops", n.rollouts);
             assert!(n.rollout_steps <= cap as u64 * n.rollouts, "cap {cap}");
         }
+        // Bounded by the cell count instead, the list needs its spare slot:
+        // with a point sensor a practice target at the searcher's own cell
+        // is seen only from there, so a rollout can mark every other cell
+        // and then revisit one (a write past the distinct cells).
+        let mut c = crate::config::Config::default();
+        c.set("variant", "cells").unwrap();
+        (c.n, c.rv, c.rollout_cap, c.loops) = (3, 0.0, 400, 200);
+        c.set("prior", "uniform").unwrap();
+        c.set("belief", "prior").unwrap();
+        let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
+        ep.step_move();
+        assert!(ep.counters().rollouts >= 200);
     }
 
     #[test]
