@@ -274,10 +274,14 @@ mod tests {
         // rollout), written into a list sized by the cap when the cap is
         // below the cell count (debug builds check every write's slot).
         // Every test's cap used to exceed the cell count.
+        let cells = |settings: &[(&str, &str)]| {
+            crate::config::Config::default()
+                .with(&[("variant", "cells")])
+                .with(settings)
+        };
         for cap in [1, 3] {
-            let mut c = crate::config::Config::default();
-            c.set("variant", "cells").unwrap();
-            (c.rollout_cap, c.seed, c.loops) = (cap, 7, 50);
+            let cap_text = cap.to_string();
+            let c = cells(&[("rollout_cap", &cap_text), ("seed", "7"), ("loops", "50")]);
             let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
             for _ in 0..5 {
                 ep.step_move();
@@ -290,11 +294,14 @@ mod tests {
         // with a point sensor a practice target at the searcher's own cell
         // is seen only from there, so a rollout can mark every other cell
         // and then revisit one (a write past the distinct cells).
-        let mut c = crate::config::Config::default();
-        c.set("variant", "cells").unwrap();
-        (c.n, c.rv, c.rollout_cap, c.loops) = (3, 0.0, 400, 200);
-        c.set("prior", "uniform").unwrap();
-        c.set("belief", "prior").unwrap();
+        let c = cells(&[
+            ("n", "3"),
+            ("rv", "0"),
+            ("rollout_cap", "400"),
+            ("loops", "200"),
+            ("prior", "uniform"),
+            ("belief", "prior"),
+        ]);
         let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
         ep.step_move();
         assert!(ep.counters().rollouts >= 200);
