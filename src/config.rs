@@ -1656,6 +1656,71 @@ mod tests {
     }
 
     #[test]
+    fn the_mcts_parameters_apply_by_variant_and_rollout() {
+        // The CLI refuses a flag that does not apply and the page hides its
+        // control, so each of these must apply exactly where the searcher
+        // reads it. Columns: reset_each_move, tree_nodes, decay, the four
+        // pomcp_ parameters, final, rollout, then mu under a Lévy rollout
+        // and epsilon under a greedy one (each false under the other).
+        let keys = [
+            "reset_each_move",
+            "tree_nodes",
+            "decay",
+            "pomcp_scale",
+            "pomcp_exact",
+            "pomcp_depth",
+            "pomcp_plan",
+            "final",
+            "rollout",
+        ];
+        let table = [
+            (
+                "cells",
+                [true, false, true, false, false, false, false, true, true],
+                true,
+            ),
+            (
+                "tree",
+                [false, true, false, false, false, false, false, true, true],
+                true,
+            ),
+            (
+                "code",
+                [true, false, false, false, false, false, false, true, true],
+                true,
+            ),
+            (
+                "pomcp",
+                [false, true, false, true, true, true, true, false, false],
+                false,
+            ),
+        ];
+        for (variant, applies, reads_policy) in table {
+            for (rollout, mu, epsilon) in [
+                ("levy", reads_policy, false),
+                ("greedy", false, reads_policy),
+                ("rw", false, false),
+                ("nsarw", false, false),
+            ] {
+                let c = Config::default().with(&[("variant", variant), ("rollout", rollout)]);
+                let a = c.applicable();
+                assert_eq!(keys.map(|k| a.contains(&k)), applies, "{variant} {rollout}");
+                assert_eq!(
+                    (a.contains(&"mu"), a.contains(&"epsilon")),
+                    (mu, epsilon),
+                    "{variant} {rollout}"
+                );
+                // What every variant reads, and what the time budget hides.
+                for k in ["variant", "c", "rollout_cap", "escape", "loops"] {
+                    assert!(a.contains(&k), "{variant} {rollout} {k}");
+                }
+                let timed = Config::default().with(&[("variant", variant), ("ms", "5")]);
+                assert!(!timed.applicable().contains(&"loops"), "{variant}");
+            }
+        }
+    }
+
+    #[test]
     fn applicability_follows_the_searcher() {
         let mut c = Config::default();
         assert!(c.applicable().contains(&"c"));
