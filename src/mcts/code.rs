@@ -158,3 +158,52 @@ impl Stats for CodeTable {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::config::Config;
+    use crate::episode::{Episode, Status};
+    use crate::view::Layer;
+
+    #[test]
+    fn a_decision_counts_its_own_selections_and_a_reset_clears_the_table() {
+        // Every rollout adds 2 visits (root and neighbour) and one per
+        // rollout step, expansions included, so the table's total is
+        // 2 × rollouts + rollout steps: over the whole trial when the
+        // table persists, over the decision under way when it is reset.
+        for reset in [false, true] {
+            let c = Config::default().with(&[
+                ("variant", "code"),
+                ("loops", "10"),
+                ("reset_each_move", if reset { "1" } else { "0" }),
+                ("seed", "5"),
+            ]);
+            let mut ep = Episode::new(&c).unwrap();
+            let mut scratch = Vec::new();
+            let mut total = |ep: &Episode| -> u64 {
+                let v = ep.counts(Layer::Visits, &mut scratch).unwrap();
+                v.iter().map(|&x| u64::from(x)).sum()
+            };
+            for _ in 0..3 {
+                assert_eq!(ep.step_move(), Status::Running);
+            }
+            let before = ep.counters();
+            ep.step_loops(4);
+            let now = ep.counters();
+            let (rollouts, steps) = if reset {
+                (
+                    now.rollouts - before.rollouts,
+                    now.rollout_steps - before.rollout_steps,
+                )
+            } else {
+                (now.rollouts, now.rollout_steps)
+            };
+            assert!(now.rollouts > before.rollouts + 3, "reset {reset}");
+            assert_eq!(total(&ep), 2 * rollouts + steps, "reset {reset}");
+            // The panel's selections are this decision's loops alone.
+            let view = ep.decision().unwrap();
+            let selected: u32 = view.children.iter().map(|ch| ch.selected).sum();
+            assert_eq!(selected, 4, "reset {reset}");
+        }
+    }
+}

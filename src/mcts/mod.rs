@@ -522,3 +522,126 @@ pub(crate) fn rollout<V: Visit>(env: &mut LoopEnv<'_>, from: u32, visit: &mut V)
     env.policy
         .rollout(env.torus, env.mask, env.rng, from, env.rollout_cap, visit)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn child(visits: u32, reward: f64, parent: u32, selected: u32) -> ChildStat {
+        ChildStat::new(0, visits, reward, parent, 1.5, selected)
+    }
+
+    #[test]
+    fn the_uct_terms_follow_the_formula() {
+        // Q/N, c·sqrt(ln N_parent / N), and their sum: what the decision
+        // panel shows and what tree and pomcp select by.
+        let (mean, explore, uct) = uct_terms(3.0, 4, 20, 1.5);
+        assert_eq!(mean, 0.75);
+        let want = 1.5 * (20f64.ln() / 4.0).sqrt();
+        assert!((explore - want).abs() < 1e-15, "{explore} against {want}");
+        assert_eq!(uct, mean + explore);
+        // Exploration shrinks as a child is visited and grows with its
+        // parent; an unvisited child is tried first; a parent seen at
+        // most once gives ln 1 = 0.
+        assert!(uct_terms(3.0, 8, 20, 1.5).1 < explore);
+        assert!(uct_terms(3.0, 4, 40, 1.5).1 > explore);
+        assert_eq!(
+            uct_terms(0.0, 0, 20, 1.5),
+            (0.0, f64::INFINITY, f64::INFINITY)
+        );
+        assert_eq!(uct_terms(2.0, 4, 0, 1.5), (0.5, 0.0, 0.5));
+        assert_eq!(uct_terms(2.0, 4, 1, 1.5), (0.5, 0.0, 0.5));
+        let s = ChildStat::new(7, 4, 3.0, 20, 1.5, 2);
+        assert_eq!(
+            (s.cell, s.visits, s.reward, s.mean, s.explore, s.uct, s.selected),
+            (7, 4, 3.0, mean, explore, uct, 2)
+        );
+    }
+
+    #[test]
+    fn argmax_breaks_ties_uniformly_among_the_valid_moves() {
+        let mut rng = rng::stream(11, 0);
+        let values = [0.5, 2.0, 2.0, 2.0];
+        let valid = [true, true, false, true];
+        let mut seen = [0u32; 4];
+        let draws = 6000;
+        for _ in 0..draws {
+            seen[argmax_random(values, valid, &mut rng).unwrap()] += 1;
+        }
+        // Moves 1 and 3 tie among the valid ones: each half the draws,
+        // within 4 standard errors (sqrt(n/4) = 38.7).
+        assert_eq!((seen[0], seen[2]), (0, 0));
+        for i in [1, 3] {
+            assert!((seen[i] as f64 - 3000.0).abs() < 4.0 * 38.8, "{seen:?}");
+        }
+        // A unique maximum always wins, even at -∞ when it is all that is
+        // valid, and nothing valid gives no move.
+        let neg = f64::NEG_INFINITY;
+        assert_eq!(
+            argmax_random([1.0, 3.0, 2.0, 0.0], [true; 4], &mut rng),
+            Some(1)
+        );
+        assert_eq!(
+            argmax_random([9.0, neg, 9.0, 9.0], [false, true, false, false], &mut rng),
+            Some(1)
+        );
+        assert_eq!(argmax_random([1.0; 4], [false; 4], &mut rng), None);
+    }
+
+    #[test]
+    fn the_final_rules_rank_the_children_and_leading_names_the_tied_best() {
+        // Move 0: selected most; move 1: best mean; move 2: unvisited
+        // (best UCT); move 3: visited once with a mean of 0.
+        let view = DecisionView {
+            parent_visits: 30,
+            c: 1.5,
+            children: [
+                child(20, 2.0, 30, 20),
+                child(9, 4.5, 30, 5),
+                child(0, 0.0, 30, 0),
+                child(1, 0.0, 30, 1),
+            ],
+        };
+        let mut rng = rng::stream(3, 0);
+        for (rule, best) in [
+            (FinalRule::Visits, Move::ALL[0]),
+            (FinalRule::Mean, Move::ALL[1]),
+            (FinalRule::Uct, Move::ALL[2]),
+        ] {
+            assert_eq!(final_move(&view, rule, &mut rng), best, "{rule}");
+            let mut lead = [false; 4];
+            lead[best as usize] = true;
+            assert_eq!(leading(&view, rule), lead, "{rule}");
+        }
+        // Under `mean` an unvisited child ranks below a visited one whose
+        // mean is 0, and equal selections tie.
+        let mut cold = view;
+        cold.children[1] = child(0, 0.0, 30, 0);
+        cold.children[0].reward = 0.0;
+        cold.children[0].mean = 0.0;
+        assert_eq!(leading(&cold, FinalRule::Mean), [true, false, false, true]);
+        cold.children[3].selected = 20;
+        assert_eq!(
+            leading(&cold, FinalRule::Visits),
+            [true, false, false, true]
+        );
+    }
+
+    #[test]
+    fn only_the_belief_mcts_draws_an_intended_path() {
+        use crate::config::Config;
+        use crate::episode::Episode;
+        for variant in ["cells", "tree", "code"] {
+            let c = Config::default().with(&[("variant", variant), ("loops", "20")]);
+            let mut ep = Episode::new(&c).unwrap();
+            for _ in 0..3 {
+                ep.step_move();
+                assert_eq!(ep.intent(), &[] as &[u32], "{variant}");
+            }
+        }
+        let c = Config::default().with(&[("variant", "pomcp"), ("loops", "20")]);
+        let mut ep = Episode::new(&c).unwrap();
+        ep.step_move();
+        assert!(!ep.intent().is_empty());
+    }
+}

@@ -264,3 +264,116 @@ pub(crate) fn reroot<N: Copy>(
     }
     std::mem::swap(nodes, scratch);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::belief::{Belief, BeliefState};
+    use crate::config::Config;
+    use crate::searchers::{Policy, PolicyKind};
+
+    /// Runs `loops` loops of `tree` from `root` on the game of a 12-torus
+    /// (σ = 2.5, rollouts capped at `cap`), with practice targets from the
+    /// prior.
+    fn run(tree: &mut Tree, root: u32, loops: u32, cap: u32) -> Config {
+        let c = Config::default().with(&[("n", "12"), ("sigma", "2.5")]);
+        let mut game = c.game().unwrap();
+        let mut belief = BeliefState::new(Belief::Prior, game.prior.clone(), None);
+        let mut policy = Policy::new(PolicyKind::Rw, &game.torus, 2.0, 0.2);
+        let mut rng = crate::rng::stream(9, 0);
+        for _ in 0..loops {
+            let practice = belief.practice_target(&mut rng);
+            game.sensor.arm(practice);
+            let mut env = LoopEnv {
+                torus: &game.torus,
+                belief: &belief,
+                sensor: &game.sensor,
+                mask: game.sensor.mask(),
+                practice,
+                policy: &mut policy,
+                rng: &mut rng,
+                rollout_cap: cap,
+                c: c.c,
+                trace: None,
+            };
+            let report = tree.iterate(&mut env, root);
+            assert!(report.counts && report.rollout_steps <= cap);
+        }
+        c
+    }
+
+    #[test]
+    fn the_arena_stops_at_its_cap_and_every_loop_passes_a_root_child() {
+        let mut tree = Tree::new(MIN_MAX_NODES);
+        tree.begin_decision(5, false);
+        run(&mut tree, 5, 300, 50);
+        // Full at exactly its cap, then the loops only select.
+        assert_eq!(tree.nodes.len(), MIN_MAX_NODES as usize);
+        let root = tree.nodes[0];
+        let kids = root.children.map(|k| tree.nodes[k as usize]);
+        assert_eq!(root.visits, 300);
+        assert_eq!(kids.iter().map(|k| k.visits).sum::<u32>(), 300);
+        let reward: f64 = kids.iter().map(|k| k.reward).sum();
+        assert!((reward - root.reward).abs() < 1e-12 && reward > 0.0);
+        assert_eq!(tree.selected, kids.map(|k| k.visits));
+        // Caps below the root and its four children are raised to 16.
+        assert_eq!(Tree::new(3).max_nodes, MIN_MAX_NODES as usize);
+    }
+
+    #[test]
+    fn the_visits_layer_adds_each_nodes_visits_to_its_cell() {
+        let mut tree = Tree::new(DEFAULT_MAX_NODES);
+        tree.begin_decision(5, false);
+        let c = run(&mut tree, 5, 200, 50);
+        let cells = (c.n * c.n) as usize;
+        let mut want = vec![0u32; cells];
+        for n in &tree.nodes {
+            want[n.cell as usize] += n.visits;
+        }
+        // The scratch buffer is resized and cleared first.
+        let mut scratch = vec![7u32; 3];
+        let got = tree.visits(cells, &mut scratch).to_vec();
+        assert_eq!(got, want);
+        assert!(got[5] >= 200 && got.iter().filter(|&&v| v > 0).count() > 5);
+    }
+
+    #[test]
+    fn a_real_move_keeps_the_childs_subtree_as_the_new_tree() {
+        let mut tree = Tree::new(DEFAULT_MAX_NODES);
+        tree.begin_decision(5, false);
+        run(&mut tree, 5, 200, 50);
+        let old = tree.clone();
+        let kid = old.nodes[0].children[1];
+        tree.advance(Move::ALL[1]);
+        // Walk the old subtree and the new tree in step.
+        let mut pairs = vec![(kid, 0u32)];
+        let mut walked = 0;
+        while let Some((o, n)) = pairs.pop() {
+            let (was, now) = (old.nodes[o as usize], tree.nodes[n as usize]);
+            assert_eq!(
+                (now.cell, now.visits, now.reward),
+                (was.cell, was.visits, was.reward)
+            );
+            for i in 0..4 {
+                assert_eq!(was.children[i] == NONE, now.children[i] == NONE);
+                if was.children[i] != NONE {
+                    pairs.push((was.children[i], now.children[i]));
+                }
+            }
+            walked += 1;
+        }
+        assert_eq!(walked, tree.nodes.len());
+        assert!(walked > 1 && walked < old.nodes.len());
+        // The next decision keeps it when it starts at its root, and a
+        // decision elsewhere starts a new tree.
+        let cell = tree.nodes[0].cell;
+        tree.begin_decision(cell, false);
+        assert_eq!(tree.nodes.len(), walked);
+        tree.begin_decision(5, false);
+        assert_eq!(tree.nodes.len(), 1);
+        assert_eq!(tree.nodes[0].cell, 5);
+        // A move with no child leaves nothing to keep.
+        tree.advance(Move::ALL[0]);
+        assert!(tree.nodes.is_empty());
+    }
+}
