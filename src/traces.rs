@@ -46,3 +46,52 @@ impl Traces {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Records `cells` as one loop's trace chasing `practice`.
+    fn record(t: &mut Traces, cells: &[u32], practice: u32) {
+        if let Some(slot) = t.slot() {
+            slot.clear();
+            slot.extend_from_slice(cells);
+        }
+        t.commit(practice);
+    }
+
+    fn kept(t: &Traces) -> Vec<(Vec<u32>, u32)> {
+        t.iter().map(|(cells, p)| (cells.to_vec(), p)).collect()
+    }
+
+    #[test]
+    fn the_ring_keeps_the_newest_traces_newest_first() {
+        let mut t = Traces::new(3);
+        assert!(kept(&t).is_empty());
+        record(&mut t, &[1, 2], 10);
+        record(&mut t, &[3], 11);
+        assert_eq!(kept(&t), [(vec![3], 11), (vec![1, 2], 10)]);
+        // Past its room it overwrites the oldest, round and round.
+        for i in 0..7u32 {
+            record(&mut t, &[100 + i, 200 + i], 20 + i);
+        }
+        assert_eq!(
+            kept(&t),
+            [
+                (vec![106, 206], 26),
+                (vec![105, 205], 25),
+                (vec![104, 204], 24)
+            ]
+        );
+        // A slot holds last round's trace until the loop clears it.
+        assert_eq!(t.slot().map(|s| s.clone()), Some(vec![104, 204]));
+    }
+
+    #[test]
+    fn keeping_none_records_nothing() {
+        let mut t = Traces::new(0);
+        assert!(t.slot().is_none());
+        record(&mut t, &[1, 2], 3);
+        assert!(kept(&t).is_empty());
+    }
+}
