@@ -631,6 +631,135 @@ mod tests {
         assert!(slices > path.len(), "{slices} slices");
     }
 
+    /// The path a plain local search makes from `path`: the documented
+    /// changes, tried in the documented order (first move `i`, then second
+    /// move `j` below the window, then kind), each counted by
+    /// [`brute_total`] and kept when it lowers the total by more than
+    /// 10⁻¹²; passes until one keeps nothing. Returns the path, the changes
+    /// kept and the passes made.
+    fn plain_refine(
+        g: &crate::config::Game,
+        mass: &[f64],
+        cap: u32,
+        window: usize,
+        span: usize,
+        path: &[u32],
+    ) -> (Vec<u32>, u32, u32) {
+        let t = &g.torus;
+        let len = span.min(path.len() - 1) + 1;
+        let tail = &path[len..];
+        let mut moves: Vec<Move> = path[..len]
+            .windows(2)
+            .map(|w| t.move_to(w[0], w[1]).unwrap())
+            .collect();
+        let cells = |moves: &[Move]| {
+            let mut p = walk(t, path[0], moves);
+            p.extend_from_slice(tail);
+            p
+        };
+        let unit = |d: (i32, i32)| Move::ALL.into_iter().find(|m| m.delta() == d);
+        let (mut changes, mut passes) = (0, 0);
+        loop {
+            let mut kept = 0;
+            for i in 0..len.saturating_sub(2) {
+                let mut j = i + 1;
+                while j < (i + window).min(len - 1) {
+                    let (mi, mj) = (moves[i], moves[j]);
+                    let mut better = false;
+                    for kind in 0..KINDS {
+                        let mut c = moves.clone();
+                        match kind {
+                            0..=3 => {
+                                let a = Move::ALL[kind as usize];
+                                let (da, di, dj) = (a.delta(), mi.delta(), mj.delta());
+                                let Some(b) = unit((di.0 + dj.0 - da.0, di.1 + dj.1 - da.1)) else {
+                                    continue;
+                                };
+                                if a == mi {
+                                    continue;
+                                }
+                                (c[i], c[j]) = (a, b);
+                            }
+                            4 | 5 if mi == mj => continue,
+                            4 => c[i..=j].rotate_left(1),
+                            5 => c[i..=j].rotate_right(1),
+                            _ if j == i + 1 => continue,
+                            _ => c[i..=j].reverse(),
+                        }
+                        let (old, new) = (cells(&moves), cells(&c));
+                        if old != new
+                            && brute_total(g, mass, cap, &new) - brute_total(g, mass, cap, &old)
+                                < -1e-12
+                        {
+                            moves = c;
+                            better = true;
+                            break;
+                        }
+                    }
+                    if better {
+                        kept += 1;
+                    } else {
+                        j += 1;
+                    }
+                }
+            }
+            passes += 1;
+            changes += kept;
+            if kept == 0 || passes == MAX_PASSES {
+                return (cells(&moves), changes, passes);
+            }
+        }
+    }
+
+    #[test]
+    fn refinement_is_the_plain_search_over_the_documented_changes() {
+        // The same path, changes and passes as a plain search that counts
+        // every change from scratch. This pins each kind of change (the
+        // delta test above only checks a change's count, whatever the
+        // change), the order they are tried in, the window, the span and
+        // the end of the passes. Paths: a meander with wasted wiggles, and
+        // random walks (revisits, reversals) with a tail after the span
+        // and a cap inside the path.
+        let mut rng = crate::rng::stream(5, 0);
+        let mut cases = Vec::new();
+        cases.push((12u32, "1", "2", 40, 8, usize::MAX, meander(|k| k % 4 == 1)));
+        for (n, rv, sigma, cap, window, span) in [
+            (9u32, "1", "1.5", 1000, 6, 30),
+            (11, "1.5", "2", 35, 12, 45),
+            (8, "0", "inf", 60, 5, 50),
+        ] {
+            let moves: Vec<Move> = (0..60)
+                .map(|_| Move::from_index(crate::rng::below(&mut rng, 4)))
+                .collect();
+            cases.push((n, rv, sigma, cap, window, span, moves));
+        }
+        for (n, rv, sigma, cap, window, span, moves) in cases {
+            let (_, g) = game(&[("n", &n.to_string()), ("rv", rv), ("sigma", sigma)]);
+            let mass = g.prior.mass();
+            let path = walk(&g.torus, g.start, &moves);
+            let (want, changes, passes) = plain_refine(&g, mass, cap, window, span, &path);
+            let mut got = path.clone();
+            let mut r = Refiner::default();
+            let out = r.refine(
+                &g.torus,
+                &g.sensor,
+                mass,
+                cap,
+                window as u32,
+                span,
+                &mut got,
+            );
+            let case = format!("n {n} rv {rv} cap {cap} window {window} span {span}");
+            assert_eq!(got, want, "{case}");
+            assert_eq!((out.changes, r.progress().0), (changes, passes), "{case}");
+            assert!(changes > 2 && passes > 1, "{case}: {changes} changes");
+            assert!(
+                (out.after - brute_total(&g, mass, cap, &got)).abs() < 1e-9,
+                "{case}"
+            );
+        }
+    }
+
     #[test]
     fn cells_after_the_span_stay_and_count() {
         // Only the first 10 moves change; a cell the tail sees first still
