@@ -658,6 +658,8 @@ mod tests {
             p
         };
         let unit = |d: (i32, i32)| Move::ALL.into_iter().find(|m| m.delta() == d);
+        let mut old = cells(&moves);
+        let mut old_total = brute_total(g, mass, cap, &old);
         let (mut changes, mut passes) = (0, 0);
         loop {
             let mut kept = 0;
@@ -686,12 +688,13 @@ mod tests {
                             _ if j == i + 1 => continue,
                             _ => c[i..=j].reverse(),
                         }
-                        let (old, new) = (cells(&moves), cells(&c));
-                        if old != new
-                            && brute_total(g, mass, cap, &new) - brute_total(g, mass, cap, &old)
-                                < -1e-12
-                        {
-                            moves = c;
+                        let new = cells(&c);
+                        if new == old {
+                            continue;
+                        }
+                        let new_total = brute_total(g, mass, cap, &new);
+                        if new_total - old_total < -1e-12 {
+                            (moves, old, old_total) = (c, new, new_total);
                             better = true;
                             break;
                         }
@@ -706,7 +709,7 @@ mod tests {
             passes += 1;
             changes += kept;
             if kept == 0 || passes == MAX_PASSES {
-                return (cells(&moves), changes, passes);
+                return (old, changes, passes);
             }
         }
     }
