@@ -8,8 +8,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use std::hint::black_box;
 use torus_search::bench::{mcts_loops, rollout_steps};
 use torus_search::config::Config;
-use torus_search::episode::Episode;
-use torus_search::mcts::Variant;
+use torus_search::run::episode::Episode;
+use torus_search::searchers::mcts::Variant;
 use torus_search::searchers::PolicyKind;
 
 const N: u32 = 40;

@@ -3,10 +3,10 @@
 //! the same work is measured on every platform.
 
 use crate::config::{self, Config, ConfigError, Value};
-use crate::episode::Episode;
-use crate::lattice::{Sensor, Torus};
-use crate::prior::{PriorSpec, TargetPrior};
-use crate::rng;
+use crate::game::lattice::{Sensor, Torus};
+use crate::game::prior::{PriorSpec, TargetPrior};
+use crate::game::rng;
+use crate::run::episode::Episode;
 use crate::searchers::{NoVisit, Policy, PolicyKind};
 
 /// Runs rollouts of `kind` between uniformly random start and target cells on
@@ -110,7 +110,7 @@ impl LoopRunner {
             let before = self.episode.counters().rollouts;
             self.moves += self.episode.advance(target - self.loops);
             self.loops += self.episode.counters().rollouts - before;
-            if self.episode.status() != crate::episode::Status::Running {
+            if self.episode.status() != crate::run::episode::Status::Running {
                 self.episodes += 1;
                 self.trial += 1;
                 self.episode = Episode::trial(&self.cfg, self.trial)?;
@@ -143,7 +143,7 @@ pub fn move_cases(n: u32) -> Vec<(String, Config)> {
             ..base.clone()
         };
         if (info.uses)(&cfg, "variant") {
-            for &variant in crate::mcts::Variant::ALL {
+            for &variant in crate::searchers::mcts::Variant::ALL {
                 out.push((
                     format!("{}-{variant}", info.name),
                     Config {
@@ -219,7 +219,7 @@ impl MoveRunner {
             let before = self.episode.steps();
             let status = self.episode.step_move();
             self.moves += u64::from(self.episode.steps() - before);
-            if status != crate::episode::Status::Running {
+            if status != crate::run::episode::Status::Running {
                 self.episodes += 1;
                 self.ended = true;
             }
@@ -244,7 +244,7 @@ mod tests {
                 info.name
             );
         }
-        for v in crate::mcts::Variant::ALL {
+        for v in crate::searchers::mcts::Variant::ALL {
             assert!(cases.iter().any(|(l, _)| *l == format!("mcts-{v}")));
         }
         assert!(cases

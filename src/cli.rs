@@ -11,16 +11,16 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
-use torus_search::batch;
-use torus_search::bound;
+use torus_search::analysis::bound;
+use torus_search::analysis::exact;
+use torus_search::analysis::stats::{self, Summary};
+use torus_search::config::preset::Preset;
 use torus_search::config::{self, Config, ConfigError, Kind, PARAMS, TRIALS};
-use torus_search::episode::{Episode, TrialResult};
-use torus_search::exact;
 use torus_search::experiment::{self, Plan, ResultSet, Shard, Spec, SpecError};
-use torus_search::mcts::Variant;
-use torus_search::preset::Preset;
+use torus_search::run::batch;
+use torus_search::run::episode::{Episode, TrialResult};
+use torus_search::searchers::mcts::Variant;
 use torus_search::searchers::PolicyKind;
-use torus_search::stats::{self, Summary};
 
 /// `println!` that ends the process quietly when stdout is closed (as in
 /// `torus-search bench | head -1`) instead of panicking.
@@ -802,11 +802,12 @@ fn print_table(cfg: &Config, s: &Summary, lower_bound: f64, seconds: f64, thread
             cfg.rollout,
             cfg.belief,
             cfg.c,
-            torus_search::mcts::final_rule(cfg)
+            torus_search::searchers::mcts::final_rule(cfg)
         );
     }
-    let ci =
-        |m: &torus_search::stats::MeanCi| format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi);
+    let ci = |m: &torus_search::analysis::stats::MeanCi| {
+        format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi)
+    };
     out!(
         "torus-search: N={} r_v={} prior={} start={},{} seed={}",
         cfg.n,
@@ -1036,7 +1037,7 @@ fn plan_slices(json: bool) -> Result<Vec<serde_json::Value>, UsageError> {
     }
     for n in [40, 256] {
         for (label, cfg) in torus_search::bench::move_cases(n) {
-            let mut ep = torus_search::episode::Episode::trial(&cfg, 0).map_err(usage)?;
+            let mut ep = torus_search::run::episode::Episode::trial(&cfg, 0).map_err(usage)?;
             let mut ms = Vec::new();
             loop {
                 let t = Instant::now();

@@ -2,31 +2,20 @@
 //!
 //! The core (everything except [`wasm`]) is plain Rust with no browser
 //! dependency. A run is a pure function of a [`config::Config`] (which
-//! holds the seed) on every platform. `docs/ARCHITECTURE.md` maps the
-//! modules and the data flow from a URL or CLI flag to a drawn frame.
+//! holds the seed) on every platform. The modules form layers that only
+//! point down (`docs/ARCHITECTURE.md`; `tests/layers.rs` checks it):
 
-mod named;
+pub mod game;
 
-pub mod batch;
-pub mod belief;
-pub mod bench;
-pub mod bound;
-pub mod budget;
-pub mod config;
-pub mod coverage;
-pub mod episode;
-pub mod exact;
-pub mod experiment;
-pub mod lattice;
-pub mod mcts;
-pub mod preset;
-pub mod prior;
-pub mod race;
-pub mod render;
-pub mod rng;
 pub mod searchers;
-pub mod stats;
-pub mod theory;
-pub mod traces;
-pub mod view;
+
+pub mod config;
+
+pub mod run;
+
+pub mod analysis;
+pub mod bench;
+pub mod display;
+pub mod experiment;
+
 pub mod wasm;

@@ -10,15 +10,15 @@
 //! that fails (the instance is out of memory) aborts with no message, so
 //! the global allocator notes its size for [`last_out_of_memory`] first.
 
+use crate::analysis::stats::Summary;
 use crate::config::{self, Config};
-use crate::episode::{Episode, TrialResult, TRIAL_FIELDS};
+use crate::display::render::{Alpha, Colorizer, Palette, ScaleKind};
+use crate::display::view::{self, FrameBuilder, FrameRequest};
 use crate::experiment::{self, Plan, ResultSet, Spec};
-use crate::prior;
-use crate::race::Race as CoreRace;
-use crate::render::{Alpha, Colorizer, Palette, ScaleKind};
+use crate::game::prior;
+use crate::run::episode::{Episode, TrialResult, TRIAL_FIELDS};
+use crate::run::race::Race as CoreRace;
 use crate::searchers::PolicyKind;
-use crate::stats::Summary;
-use crate::view::{self, FrameBuilder, FrameRequest};
 use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
@@ -254,7 +254,7 @@ pub fn set_param(config: JsValue, key: &str, raw: &str) -> Result<JsValue, JsErr
 #[wasm_bindgen(js_name = presetOf)]
 pub fn preset_of(config: JsValue) -> Result<Option<String>, JsError> {
     let cfg = config_from_js(config)?;
-    Ok(crate::preset::Preset::matching(&cfg).map(|p| p.name().to_string()))
+    Ok(crate::config::preset::Preset::matching(&cfg).map(|p| p.name().to_string()))
 }
 
 /// `[key, text]` pairs for a URL: every parameter with `full`, else the
@@ -618,7 +618,8 @@ impl Race {
                     start: r.start(),
                     target: r.target(),
                     optimal: r.optimal(),
-                    lower_bound: crate::bound::lower_bound_capped(r.config()).map_err(err)?,
+                    lower_bound: crate::analysis::bound::lower_bound_capped(r.config())
+                        .map_err(err)?,
                 })
             })
             .collect::<Result<_, JsError>>()?;
@@ -683,7 +684,7 @@ impl Race {
             config: &'a Config,
             path: &'a [u32],
             result: TrialResult,
-            status: crate::episode::Status,
+            status: crate::run::episode::Status,
         }
         let runs: Vec<Run> = self
             .race

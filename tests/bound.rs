@@ -34,14 +34,14 @@
 mod common;
 
 use common::{bfs_steps, ref_dist2, ref_l1};
-use torus_search::bound::{
+use torus_search::analysis::bound::{
     covered_bound, detection_times, dp_optimum, known_target_mean, lower_bound, lower_bound_capped,
     lower_bound_of, new_cells_per_move, path_mean, BoundError, DP_MAX_CELLS,
 };
 use torus_search::config::Config;
-use torus_search::lattice::{Sensor, Torus};
-use torus_search::prior::{PriorKind, PriorSpec, TargetPrior};
-use torus_search::rng::{self, Rng};
+use torus_search::game::lattice::{Sensor, Torus};
+use torus_search::game::prior::{PriorKind, PriorSpec, TargetPrior};
+use torus_search::game::rng::{self, Rng};
 
 /// Detection radii with their integer squared radius, so the reference
 /// footprint compares integers.

@@ -1,12 +1,12 @@
 //! A run is a pure function of (config, seed) on every platform: these
 //! fingerprints are pinned and checked natively and in wasm.
 
-use torus_search::batch::{fingerprint, run_trials};
-use torus_search::belief::Belief;
+use torus_search::config::preset::Preset;
 use torus_search::config::Config;
-use torus_search::mcts::{FinalRule, Variant};
-use torus_search::preset::Preset;
-use torus_search::prior::PriorKind;
+use torus_search::game::belief::Belief;
+use torus_search::game::prior::PriorKind;
+use torus_search::run::batch::{fingerprint, run_trials};
+use torus_search::searchers::mcts::{FinalRule, Variant};
 use torus_search::searchers::{PolicyKind, SearcherId};
 use wasm_bindgen_test::wasm_bindgen_test;
 
@@ -328,7 +328,7 @@ fn trials_do_not_depend_on_how_a_batch_is_split() {
 #[wasm_bindgen_test(unsupported = test)]
 fn loop_windows_replay_the_page_episode() {
     use torus_search::bench::LoopRunner;
-    use torus_search::episode::{Episode, Status};
+    use torus_search::run::episode::{Episode, Status};
     let cfg = Config {
         loops: 30,
         seed: 9,

@@ -322,7 +322,7 @@ fn priors_sample_the_targets_episodes_draw() {
     assert_eq!(stats[0].spread.max, 0.0);
     // Sample i is the target of episode i with that point's configuration.
     for i in [0u64, 17, 299] {
-        let ep = torus_search::episode::Episode::trial(&p.points[2].config, i).unwrap();
+        let ep = torus_search::run::episode::Episode::trial(&p.points[2].config, i).unwrap();
         // Units are trial-major: sample i of point 2 of 4 is unit 4i + 2.
         assert_eq!(set.rows[(4 * i + 2) as usize].target, ep.target());
     }

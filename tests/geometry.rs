@@ -9,9 +9,9 @@ mod common;
 
 use common::{bfs_steps, ref_dist2, ref_l1, ref_neighbours};
 use torus_search::config::Config;
-use torus_search::episode::{Episode, Status};
-use torus_search::lattice::{Move, Sensor, Torus};
-use torus_search::prior::PriorKind;
+use torus_search::game::lattice::{Move, Sensor, Torus};
+use torus_search::game::prior::PriorKind;
+use torus_search::run::episode::{Episode, Status};
 
 fn xy(n: i64, c: u32) -> (i64, i64) {
     (c as i64 % n, c as i64 / n)

@@ -5,14 +5,14 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use torus_search::belief::Belief;
 use torus_search::config::Config;
-use torus_search::episode::Episode;
-use torus_search::mcts::Variant;
-use torus_search::prior::PriorKind;
+use torus_search::display::view::Layer;
+use torus_search::game::belief::Belief;
+use torus_search::game::prior::PriorKind;
+use torus_search::run::episode::Episode;
+use torus_search::searchers::mcts::Variant;
 use torus_search::searchers::PolicyKind;
 use torus_search::searchers::SearcherId;
-use torus_search::view::Layer;
 
 struct Counting;
 

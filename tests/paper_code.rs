@@ -5,13 +5,13 @@
 //!
 //! Runs natively (`cargo test --test paper_code`) and in Node.
 
-use torus_search::batch;
+use torus_search::analysis::stats::MeanCi;
+use torus_search::config::preset::Preset;
 use torus_search::config::Config;
-use torus_search::episode::Episode;
-use torus_search::mcts::Variant;
-use torus_search::preset::Preset;
-use torus_search::stats::MeanCi;
-use torus_search::view::Layer;
+use torus_search::display::view::Layer;
+use torus_search::run::batch;
+use torus_search::run::episode::Episode;
+use torus_search::searchers::mcts::Variant;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 fn paper_code() -> Config {
@@ -61,7 +61,7 @@ fn a_rollout_that_detects_at_once_makes_its_move_win() {
     // away (r_v = 0), every decision steps onto it.
     let cfg = Config {
         n: 9,
-        prior: torus_search::prior::PriorKind::Delta,
+        prior: torus_search::game::prior::PriorKind::Delta,
         target: Some([5, 6]),
         start: [5, 5],
         rv: 0.0,

@@ -7,13 +7,13 @@
 mod common;
 
 use common::searcher;
-use torus_search::batch::run_trials;
-use torus_search::bound::{dp_optimum, lower_bound};
+use torus_search::analysis::bound::{dp_optimum, lower_bound};
+use torus_search::analysis::exact::{blind_mean, exact_mean, ExactError};
+use torus_search::analysis::stats::MeanCi;
 use torus_search::config::Config;
-use torus_search::exact::{blind_mean, exact_mean, ExactError};
-use torus_search::prior::PriorKind;
+use torus_search::game::prior::PriorKind;
+use torus_search::run::batch::run_trials;
 use torus_search::searchers::{base_mean, Base};
-use torus_search::stats::MeanCi;
 
 fn planner(name: &str, n: u32, prior: PriorKind, sigma: f64) -> Config {
     Config {
@@ -145,9 +145,9 @@ fn exact_mean_matches_sampled_trials() {
 /// on a uniform prior, where nothing is covered ahead of it.
 #[test]
 fn each_base_alone_is_scored_along_its_own_path() {
-    use torus_search::belief::{Belief, BeliefState};
-    use torus_search::bound::path_mean;
-    use torus_search::coverage::Coverage;
+    use torus_search::analysis::bound::path_mean;
+    use torus_search::game::belief::{Belief, BeliefState};
+    use torus_search::game::coverage::Coverage;
     use torus_search::searchers::plan::{CoverWalk, FarScan};
     use torus_search::searchers::{completion, FarGoal, Lookahead, SweepPattern};
     for (n, prior, sigma, cap) in [
@@ -278,7 +278,7 @@ fn each_base_alone_is_scored_along_its_own_path() {
 /// and it completes nothing for the move at the cap, which counts for nothing.
 #[test]
 fn rollout_improvement_plans_up_to_the_step_cap_and_no_further() {
-    use torus_search::episode::Episode;
+    use torus_search::run::episode::Episode;
     for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
         let cfg = Config {
             base,
@@ -478,7 +478,7 @@ fn random_searchers_are_refused_exact_evaluation() {
 #[test]
 #[ignore]
 fn cost_per_move() {
-    use torus_search::episode::Episode;
+    use torus_search::run::episode::Episode;
     for n in [40, 256] {
         for (name, cfg) in planners(n, PriorKind::Gaussian, n as f64 / 4.0) {
             let cfg = Config {
@@ -507,10 +507,10 @@ fn cost_per_move() {
 /// the tail.
 #[test]
 fn compared_completion_is_the_horizon_searchers_path() {
-    use torus_search::belief::{Belief, BeliefState};
-    use torus_search::bound::path_mean;
-    use torus_search::coverage::Coverage;
-    use torus_search::episode::Episode;
+    use torus_search::analysis::bound::path_mean;
+    use torus_search::game::belief::{Belief, BeliefState};
+    use torus_search::game::coverage::Coverage;
+    use torus_search::run::episode::Episode;
     use torus_search::searchers::{completion, FarGoal, Lookahead};
     let cfg = Config {
         horizon: 5,
@@ -559,7 +559,7 @@ fn compared_completion_is_the_horizon_searchers_path() {
 /// shows the next 2N cells of its path.
 #[test]
 fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes() {
-    use torus_search::episode::{Episode, Status};
+    use torus_search::run::episode::{Episode, Status};
     use torus_search::searchers::sweep_path;
     for (prior, sigma) in [(PriorKind::Gaussian, 2.5), (PriorKind::Uniform, 0.0)] {
         for (name, cfg) in planners(20, prior, sigma) {

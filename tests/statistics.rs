@@ -10,16 +10,16 @@
 mod common;
 
 use common::{chi2_crit_1e4, chi2_merged};
-use torus_search::batch;
+use torus_search::analysis::stats::MeanCi;
+use torus_search::analysis::theory;
 use torus_search::config::Config;
-use torus_search::episode::{Episode, Status};
-use torus_search::lattice::{Move, Sensor, Torus};
-use torus_search::prior::{PriorKind, PriorSpec, TargetPrior};
-use torus_search::rng;
+use torus_search::display::view::Layer;
+use torus_search::game::lattice::{Move, Sensor, Torus};
+use torus_search::game::prior::{PriorKind, PriorSpec, TargetPrior};
+use torus_search::game::rng;
+use torus_search::run::batch;
+use torus_search::run::episode::{Episode, Status};
 use torus_search::searchers::{flight_end, Directions, FlightLengths, NoVisit, Policy, PolicyKind};
-use torus_search::stats::MeanCi;
-use torus_search::theory;
-use torus_search::view::Layer;
 
 fn rw_config(n: u32, rv: f64) -> Config {
     Config {

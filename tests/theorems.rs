@@ -18,10 +18,10 @@ mod common;
 
 use common::{freq_se, wilson, Z_1E4};
 use torus_search::config::Config;
-use torus_search::episode::{Episode, Status};
-use torus_search::lattice::Move;
-use torus_search::mcts::Variant;
-use torus_search::prior::PriorKind;
+use torus_search::game::lattice::Move;
+use torus_search::game::prior::PriorKind;
+use torus_search::run::episode::{Episode, Status};
+use torus_search::searchers::mcts::Variant;
 use torus_search::searchers::PolicyKind;
 
 // ---------------------------------------------------------------------------

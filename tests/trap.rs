@@ -3,11 +3,11 @@
 //! trials per prior at N = 40, step cap 20·N²) is `scripts/no-trap.sh`;
 //! this is a reduced version that runs in the test suite.
 
-use torus_search::batch;
-use torus_search::bound;
+use torus_search::analysis::bound;
+use torus_search::analysis::stats::MeanCi;
 use torus_search::config::Config;
-use torus_search::prior::PriorKind;
-use torus_search::stats::MeanCi;
+use torus_search::game::prior::PriorKind;
+use torus_search::run::batch;
 
 fn trap_config(decay: f64) -> Config {
     Config {

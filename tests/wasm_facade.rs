@@ -5,7 +5,7 @@
 #![cfg(target_arch = "wasm32")]
 
 use torus_search::config::Config;
-use torus_search::episode::Episode as CoreEpisode;
+use torus_search::run::episode::Episode as CoreEpisode;
 use torus_search::wasm::{self as facade, Race};
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::*;

@@ -14,7 +14,7 @@
 use super::defs::{Chart, Kind};
 use super::result::ResultSet;
 use super::summary::PointStats;
-use crate::render::Palette;
+use crate::display::render::Palette;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

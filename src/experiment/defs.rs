@@ -8,9 +8,9 @@
 //! Lévy rollouts, then every other searcher of the registry, so a searcher
 //! added later appears in those experiments without a change here.
 
-use crate::mcts::Variant;
-use crate::named::named_enum;
-use crate::preset::Preset;
+use crate::config::preset::Preset;
+use crate::game::named::named_enum;
+use crate::searchers::mcts::Variant;
 use crate::searchers::REGISTRY;
 
 named_enum! {
@@ -154,7 +154,7 @@ pub fn every_searcher() -> Vec<SeriesDef> {
     v.extend(
         REGISTRY
             .iter()
-            .filter(|s| s.name != crate::mcts::INFO.name && !s.name.starts_with("test-"))
+            .filter(|s| s.name != crate::searchers::mcts::INFO.name && !s.name.starts_with("test-"))
             .filter_map(|s| searcher(s.name)),
     );
     v
@@ -207,7 +207,7 @@ fn each_variant() -> Vec<SeriesDef> {
 }
 
 fn beliefs() -> Vec<SeriesDef> {
-    crate::belief::Belief::ALL
+    crate::game::belief::Belief::ALL
         .iter()
         .map(|b| SeriesDef {
             label: format!("MCTS, practice targets from the {b}"),

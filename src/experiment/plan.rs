@@ -461,7 +461,7 @@ mod tests {
 
     #[test]
     fn custom_sweeps_every_schema_parameter() {
-        let paint = crate::prior::encode_paint(&[1; 36]);
+        let paint = crate::game::prior::encode_paint(&[1; 36]);
         for p in config::PARAMS.iter().filter(|p| p.key != "seed") {
             // Params that make the swept key apply, and a value to sweep.
             let (params, value): (&str, String) = match p.key {

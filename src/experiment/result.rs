@@ -6,7 +6,7 @@ use super::plan::Plan;
 use super::run::{centre, check_range, Row};
 use super::spec::SpecError;
 use super::summary::{self, PointStats};
-use crate::lattice::Torus;
+use crate::game::lattice::Torus;
 use std::fmt;
 
 /// A result (or a result file) that cannot be used, with what is wrong.

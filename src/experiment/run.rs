@@ -10,9 +10,9 @@
 
 use super::defs::{Kind, Metric};
 use super::plan::Plan;
-use crate::episode::Episode;
-use crate::lattice::Torus;
-use crate::rng;
+use crate::game::lattice::Torus;
+use crate::game::rng;
+use crate::run::episode::Episode;
 use std::fmt;
 
 /// The numbers of a row, in order: what [`Row::fields`] gives and the

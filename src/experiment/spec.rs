@@ -7,8 +7,8 @@
 //! same thing serialise to the same bytes (the merge of shards relies on it).
 
 use super::defs::{self, Definition};
+use crate::config::preset::Preset;
 use crate::config::{self, ConfigError, TRIALS};
-use crate::preset::Preset;
 
 /// The preset of a spec that names none: the authors' code, which is what
 /// produced the paper's figures (`EXPERIMENTS.md` compares it with their

@@ -6,7 +6,7 @@
 use super::defs::{Kind, Metric};
 use super::plan::{Plan, Point};
 use super::run::{game_of, Row};
-use crate::stats::{BoxStats, MeanCi};
+use crate::analysis::stats::{BoxStats, MeanCi};
 
 /// The statistics of one point over the rows it has so far.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -59,7 +59,7 @@ pub fn lower_bound(plan: &Plan, point: &Point) -> Option<f64> {
         return None;
     }
     let cfg = &point.config;
-    let lb = crate::bound::lower_bound(cfg)
+    let lb = crate::analysis::bound::lower_bound(cfg)
         .ok()
         .filter(|b| b.is_finite())?;
     match plan.header.metric {

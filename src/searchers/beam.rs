@@ -41,11 +41,11 @@ use super::kept::{self, PlanKey};
 use super::plan::PlannedPath;
 use super::refine::Refiner;
 use super::{Planning, Searcher, SearcherInfo, World};
-use crate::belief::BeliefState;
 use crate::config::Config;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::rng::splitmix64;
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::rng::splitmix64;
 use std::collections::HashSet;
 
 /// The default beam width.
@@ -671,7 +671,7 @@ mod tests {
             ("beam_width", "12"),
             ("beam_depth", "30"),
         ]);
-        let mut sliced = crate::episode::Episode::blind(&cfg).unwrap();
+        let mut sliced = crate::run::episode::Episode::blind(&cfg).unwrap();
         let (mut slices, mut stages, mut depth) = (0, Vec::new(), 0);
         while !sliced.step_loops(1) {
             slices += 1;
@@ -708,7 +708,7 @@ mod tests {
             sliced.step_move();
         }
         kept::forget("beam");
-        let mut whole = crate::episode::Episode::blind(&cfg).unwrap();
+        let mut whole = crate::run::episode::Episode::blind(&cfg).unwrap();
         while whole.steps() < 250 {
             whole.step_move();
         }
@@ -728,9 +728,9 @@ mod tests {
             ("beam_depth", "10"),
             ("horizon", "8"),
         ]);
-        let per = crate::episode::PLAN_CALL_SLICES as usize;
+        let per = crate::run::episode::PLAN_CALL_SLICES as usize;
         // The rule's progress after each of the first slices, one a call.
-        let mut one = crate::episode::Episode::blind(&cfg).unwrap();
+        let mut one = crate::run::episode::Episode::blind(&cfg).unwrap();
         let after: Vec<u32> = (0..2 * per + 2)
             .map(|_| {
                 assert!(!one.step_loops(1));
@@ -743,7 +743,7 @@ mod tests {
             after.windows(2).all(|w| w[0] < w[1]),
             "every slice moves: {after:?}"
         );
-        let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
+        let mut ep = crate::run::episode::Episode::blind(&cfg).unwrap();
         // A clock that stands still: only the slice count ends a call.
         ep.set_clock(|| 0.0);
         for (k, slices) in [(1, per), (1000, 2 * per)] {
@@ -789,7 +789,7 @@ mod tests {
             cfg.rv = rv;
             cfg.sigma = sigma;
             let g = cfg.game().unwrap();
-            let mut ep = crate::episode::Episode::blind(&cfg).unwrap();
+            let mut ep = crate::run::episode::Episode::blind(&cfg).unwrap();
             while ep.steps() < 400 {
                 ep.step_move();
             }

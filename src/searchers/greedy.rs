@@ -1,8 +1,8 @@
 //! The greedy rollout (beyond the paper): a shortest torus path toward the
 //! practice target, with a random move with probability ε.
 
-use crate::lattice::{Move, Torus};
-use crate::rng::{self, Rng};
+use crate::game::lattice::{Move, Torus};
+use crate::game::rng::{self, Rng};
 
 /// Greedy walk toward a known target.
 #[derive(Clone, Debug)]

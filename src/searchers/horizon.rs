@@ -24,10 +24,10 @@
 
 use super::plan::{fallback_target, toward, FarScan};
 use super::{MoveScores, Searcher, SearcherInfo, World};
-use crate::belief::BeliefState;
 use crate::config::Config;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
 
 /// The largest horizon: `2·3^h` simulated moves per decision stays under
 /// 10⁵ (about 1 ms natively at r_v = 1).
@@ -598,9 +598,9 @@ impl Searcher for Horizon {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::Belief;
-    use crate::prior::{PriorSpec, TargetPrior};
-    use crate::rng;
+    use crate::game::belief::Belief;
+    use crate::game::prior::{PriorSpec, TargetPrior};
+    use crate::game::rng;
     use crate::searchers::plan::reverse;
 
     /// The best total and its sequence below a node, by the rule without

@@ -31,11 +31,11 @@ use super::horizon::{decide, FarGoal, Lookahead, Scored, SLICE_WORK};
 use super::plan::{toward, CoverWalk, FarScan, Sum};
 use super::sweep::{sweep_path, SweepPattern};
 use super::{MoveScores, Planning, Searcher, SearcherInfo, World};
-use crate::belief::BeliefState;
 use crate::config::Config;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::named::named_enum;
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::named::named_enum;
 
 named_enum! {
     /// The base policy that rollout improvement completes searches with.
@@ -643,9 +643,9 @@ pub fn base_mean(cfg: &Config, base: Base) -> Result<(f64, Vec<u32>), crate::con
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::budget::Budget;
-    use crate::episode::Counters;
-    use crate::traces::Traces;
+    use crate::game::budget::Budget;
+    use crate::game::traces::Traces;
+    use crate::run::episode::Counters;
 
     /// What driving an improver for `moves` moves gave: the moves, each
     /// decision's scores, the planning mass left after each move (`R_t`,
@@ -667,7 +667,10 @@ mod tests {
         belief.search_around(&sensor, g.start);
         let mut imp = Improve::new(cfg, &g.torus, &sensor, g.start);
         imp.slice = slice;
-        let (mut rng, mut budget) = (crate::rng::stream(1, 1), Budget::new(cfg.loops, cfg.ms));
+        let (mut rng, mut budget) = (
+            crate::game::rng::stream(1, 1),
+            Budget::new(cfg.loops, cfg.ms),
+        );
         let (mut traces, mut counters) = (Traces::new(0), Counters::default());
         let mut out = Drive {
             moves: Vec::new(),

@@ -11,8 +11,8 @@
 //! kept): at N = 1024 a key's mass is 8 MB.
 
 use super::plan::mass_left;
-use crate::belief::BeliefState;
-use crate::lattice::Move;
+use crate::game::belief::BeliefState;
+use crate::game::lattice::Move;
 use std::sync::Mutex;
 
 /// Most plans kept. Unit tests run side by side in one process, and a
@@ -123,9 +123,9 @@ pub fn forget(maker: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::Belief;
-    use crate::lattice::{Sensor, Torus};
-    use crate::prior::{PriorSpec, TargetPrior};
+    use crate::game::belief::Belief;
+    use crate::game::lattice::{Sensor, Torus};
+    use crate::game::prior::{PriorSpec, TargetPrior};
 
     fn belief(n: u32) -> BeliefState {
         let torus = Torus::new(n).unwrap();

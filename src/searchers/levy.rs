@@ -24,8 +24,8 @@
 //! `pow`/`sin`/`cos` sampler.
 
 use super::{Outcome, Policy, SearcherInfo, Visit, Walker};
-use crate::lattice::{Move, Torus};
-use crate::rng::{self, Rng};
+use crate::game::lattice::{Move, Torus};
+use crate::game::rng::{self, Rng};
 
 /// The Lévy flight as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {

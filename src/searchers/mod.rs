@@ -15,6 +15,7 @@ mod horizon;
 mod improve;
 pub(crate) mod kept;
 mod levy;
+pub mod mcts;
 mod nsarw;
 pub mod plan;
 mod policy;
@@ -36,15 +37,15 @@ pub use policy::{NoVisit, Outcome, Policy, PolicyKind, Visit};
 pub use random_walk::RandomWalk;
 pub use sweep::{sweep_path, Sweep, SweepPattern};
 
-use crate::belief::BeliefState;
-use crate::budget::Budget;
 use crate::config::Config;
-use crate::episode::Counters;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
-use crate::rng::Rng;
-use crate::traces::Traces;
-use crate::view::Layer;
+use crate::display::view::Layer;
+use crate::game::belief::BeliefState;
+use crate::game::budget::Budget;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::rng::Rng;
+use crate::game::traces::Traces;
+use crate::run::episode::Counters;
+use crate::searchers::mcts::DecisionView;
 use std::fmt;
 
 /// What a searcher works with while it decides: the trial's lattice,
@@ -194,7 +195,7 @@ pub struct SearcherInfo {
     pub deliberates: bool,
     /// True when its path does not depend on chance: until it detects the
     /// target the path is a function of the configuration alone, so one
-    /// pass along it gives its exact mean (`crate::exact`). Random walks
+    /// pass along it gives its exact mean (`crate::analysis::exact`). Random walks
     /// and MCTS draw random numbers.
     pub deterministic: bool,
     /// True when it reads configuration parameter `key` under `cfg`.
@@ -205,7 +206,7 @@ pub struct SearcherInfo {
 
 /// Every searcher, in the order the CLI and the page list them.
 pub static REGISTRY: &[&SearcherInfo] = &[
-    &crate::mcts::INFO,
+    &crate::searchers::mcts::INFO,
     &random_walk::INFO,
     &levy::INFO,
     &nsarw::INFO,
@@ -322,8 +323,8 @@ mod tests {
     //! line. `STAND_STILL` below stands for such a file (registered only in
     //! tests); everything else about it must follow from the registry.
     use super::*;
-    use crate::episode::{Episode, Status};
-    use crate::view::{FrameBuilder, FrameRequest};
+    use crate::display::view::{FrameBuilder, FrameRequest};
+    use crate::run::episode::{Episode, Status};
 
     /// Shuttles up and down: the simplest searcher that is not a walk.
     struct StandStill {
@@ -376,7 +377,7 @@ mod tests {
         assert!(frame.decision.is_none());
         assert_eq!(frame.steps, 7);
         // Batches and fingerprints take it like any other.
-        assert_eq!(crate::batch::run_trials(&cfg, 0, 2).unwrap().len(), 2);
+        assert_eq!(crate::run::batch::run_trials(&cfg, 0, 2).unwrap().len(), 2);
     }
 
     #[test]

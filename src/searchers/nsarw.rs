@@ -2,8 +2,8 @@
 //! among the neighbours visited the fewest times so far.
 
 use super::{Outcome, Policy, SearcherInfo, Visit, Walker};
-use crate::lattice::{Move, Torus, MAX_N};
-use crate::rng::{self, Rng};
+use crate::game::lattice::{Move, Torus, MAX_N};
+use crate::game::rng::{self, Rng};
 
 /// NSARW as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {

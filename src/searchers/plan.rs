@@ -7,11 +7,11 @@
 //! For a path `p_0, p_1, …` from the current cell the expected number of
 //! further moves until detection, given no detection so far, is
 //! proportional to `Σ_{t≥1} R_t` (`R_t`: planning mass left after `t`
-//! simulated moves): see `crate::bound`. Planners compare paths by that sum.
+//! simulated moves): see `crate::analysis::bound`. Planners compare paths by that sum.
 
-use crate::belief::BeliefState;
-use crate::coverage::Coverage;
-use crate::lattice::{wrap_once, Move, Sensor, Torus};
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{wrap_once, Move, Sensor, Torus};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// The planning mass of each cell, 0 where searched: what a plan made
@@ -370,7 +370,7 @@ fn cell_goal(
 }
 
 /// A completed search adds thousands of small terms: compensated.
-pub use crate::stats::Sum;
+pub use crate::analysis::stats::Sum;
 
 /// The path a planner made and follows (the beam and spiral planners):
 /// the cells still to enter, and whether the searcher is on it.
@@ -425,9 +425,9 @@ impl PlannedPath {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::Belief;
-    use crate::prior::{PriorSpec, TargetPrior};
-    use crate::rng;
+    use crate::game::belief::Belief;
+    use crate::game::prior::{PriorSpec, TargetPrior};
+    use crate::game::rng;
 
     /// The scan without bounds: every row in order, every cell compared.
     fn full_scan(

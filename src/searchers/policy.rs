@@ -2,9 +2,9 @@
 //! [`super::Walker`]) and as an MCTS rollout (default) policy.
 
 use super::{Greedy, Levy, Nsarw, RandomWalk};
-use crate::lattice::{Move, Torus};
-use crate::named::named_enum;
-use crate::rng::Rng;
+use crate::game::lattice::{Move, Torus};
+use crate::game::named::named_enum;
+use crate::game::rng::Rng;
 
 /// How a rollout ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

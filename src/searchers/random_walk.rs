@@ -1,8 +1,8 @@
 //! The simple random walk: each step is one of the four moves, uniformly.
 
 use super::{Outcome, Policy, SearcherInfo, Visit, Walker};
-use crate::lattice::{Move, Torus};
-use crate::rng::{self, Rng};
+use crate::game::lattice::{Move, Torus};
+use crate::game::rng::{self, Rng};
 
 /// The random walk as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {

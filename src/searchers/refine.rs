@@ -21,8 +21,8 @@
 //! one keeps nothing. So the mean never goes up. Deterministic: no random
 //! numbers.
 
-use crate::lattice::{Move, Sensor, Torus};
-use crate::stats::Sum;
+use crate::analysis::stats::Sum;
+use crate::game::lattice::{Move, Sensor, Torus};
 
 /// First sight of a cell the path never sees.
 const NEVER: u32 = u32::MAX;
@@ -451,7 +451,7 @@ impl Refiner {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bound;
+    use crate::analysis::bound;
     use crate::config::Config;
 
     /// The game of the default configuration with `settings`.
@@ -515,22 +515,22 @@ mod tests {
         // as they come so the index is rebuilt between checks. A slip in
         // which sight counts after the window shows here at once, where
         // the other tests would only run their passes longer.
-        let mut rng = crate::rng::stream(11, 0);
+        let mut rng = crate::game::rng::stream(11, 0);
         let mut checked = 0;
         for (n, rv, cap) in [(7u32, "1", 45u32), (9, "1.5", 200), (11, "0", 30)] {
             let (_, g) = game(&[("n", &n.to_string()), ("rv", rv), ("sigma", "2")]);
             let mass = g.prior.mass();
             let moves: Vec<Move> = (0..70)
-                .map(|_| Move::from_index(crate::rng::below(&mut rng, 4)))
+                .map(|_| Move::from_index(crate::game::rng::below(&mut rng, 4)))
                 .collect();
             let mut path = walk(&g.torus, g.start, &moves);
             let span = 50;
             let mut r = Refiner::default();
             r.start(&g.torus, &g.sensor, mass, cap, span, &path);
             for _ in 0..400 {
-                let i = crate::rng::below(&mut rng, (span - 2) as u32) as usize;
-                let j = i + 1 + crate::rng::below(&mut rng, (span - 1 - i) as u32) as usize;
-                let kind = crate::rng::below(&mut rng, KINDS);
+                let i = crate::game::rng::below(&mut rng, (span - 2) as u32) as usize;
+                let j = i + 1 + crate::game::rng::below(&mut rng, (span - 1 - i) as u32) as usize;
+                let kind = crate::game::rng::below(&mut rng, KINDS);
                 if j + 1 >= r.head.len() || !r.candidate(&g.torus, i, j, kind) {
                     continue;
                 }
@@ -546,7 +546,7 @@ mod tests {
                     "n {n} rv {rv} cap {cap} i {i} j {j} kind {kind}: {got} != {want}"
                 );
                 checked += 1;
-                if crate::rng::below(&mut rng, 4) == 0 {
+                if crate::game::rng::below(&mut rng, 4) == 0 {
                     // Keep it whatever its sign, as the next checks need a
                     // rebuilt index, not a better path.
                     r.apply(&g.sensor, i + 1);
@@ -723,7 +723,7 @@ mod tests {
         // the end of the passes. Paths: a meander with wasted wiggles, and
         // random walks (revisits, reversals) with a tail after the span
         // and a cap inside the path.
-        let mut rng = crate::rng::stream(5, 0);
+        let mut rng = crate::game::rng::stream(5, 0);
         let mut cases = Vec::new();
         cases.push((12u32, "1", "2", 40, 8, usize::MAX, meander(|k| k % 4 == 1)));
         for (n, rv, sigma, cap, window, span) in [
@@ -732,7 +732,7 @@ mod tests {
             (8, "0", "inf", 60, 5, 50),
         ] {
             let moves: Vec<Move> = (0..60)
-                .map(|_| Move::from_index(crate::rng::below(&mut rng, 4)))
+                .map(|_| Move::from_index(crate::game::rng::below(&mut rng, 4)))
                 .collect();
             cases.push((n, rv, sigma, cap, window, span, moves));
         }

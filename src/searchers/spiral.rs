@@ -53,9 +53,9 @@
 use super::plan::{mass_left, toward, PlannedPath};
 use super::sweep::{axis_reach, sweep_path, SweepPattern};
 use super::{Planning, Searcher, SearcherInfo, World, SLICE_WORK};
-use crate::belief::BeliefState;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::stats::Sum;
+use crate::analysis::stats::Sum;
+use crate::game::belief::BeliefState;
+use crate::game::lattice::{Move, Sensor, Torus};
 
 /// The spiral planner as a searcher.
 pub static INFO: SearcherInfo = SearcherInfo {
@@ -527,9 +527,9 @@ impl Searcher for Spiral {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bound::{lower_bound_of, path_mean};
+    use crate::analysis::bound::{lower_bound_of, path_mean};
     use crate::config::Config;
-    use crate::prior::PriorKind;
+    use crate::game::prior::PriorKind;
 
     fn game(cfg: &Config) -> (crate::config::Game, BeliefState) {
         let g = cfg.game().unwrap();
@@ -539,7 +539,7 @@ mod tests {
     }
 
     /// The exact mean of `plan`, walked from the start of `g`.
-    fn mean_of(g: &crate::config::Game, plan: &[u32]) -> crate::bound::PathMean {
+    fn mean_of(g: &crate::config::Game, plan: &[u32]) -> crate::analysis::bound::PathMean {
         let mut full = vec![g.start];
         full.extend_from_slice(plan);
         path_mean(&g.torus, &g.sensor, g.prior.mass(), &full)
@@ -708,7 +708,7 @@ mod tests {
             searcher: crate::searchers::SearcherId::parse("spiral").unwrap(),
             ..Config::default()
         };
-        let mut e = crate::episode::Episode::trial(&cfg, 0).unwrap();
+        let mut e = crate::run::episode::Episode::trial(&cfg, 0).unwrap();
         let r = e.run();
         assert!(r.found, "not found in {} steps", r.steps);
         // The walk to the centre (11 moves), then at most one helix sweep

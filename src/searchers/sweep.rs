@@ -17,8 +17,8 @@
 //! nowhere the sweep looked, which a full sweep rules out).
 
 use super::{Searcher, SearcherInfo, World};
-use crate::lattice::{Move, Sensor, Torus};
-use crate::named::named_enum;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::named::named_enum;
 
 named_enum! {
     /// The sweep's pattern.

@@ -2,8 +2,8 @@
 //! top of what the belief has already searched, with undo, so planners and
 //! belief rollouts can try paths without copying the searched set.
 
-use crate::belief::BeliefState;
-use crate::lattice::{Move, Sensor};
+use crate::game::belief::BeliefState;
+use crate::game::lattice::{Move, Sensor};
 use std::ops::Range;
 
 /// The cells a simulated path has covered beyond the belief's searched set.
@@ -329,9 +329,9 @@ impl Coverage {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::Belief;
-    use crate::lattice::Torus;
-    use crate::prior::{PriorSpec, TargetPrior};
+    use crate::game::belief::Belief;
+    use crate::game::lattice::Torus;
+    use crate::game::prior::{PriorSpec, TargetPrior};
 
     #[test]
     fn cover_counts_only_new_mass_and_undo_restores() {
@@ -361,11 +361,11 @@ mod tests {
 
     /// An `n`-wide lattice, r_v = 1, every cell given a random positive
     /// weight, nothing searched or simulated.
-    fn positive(n: u32, rng: &mut crate::rng::Rng) -> (Torus, Sensor, BeliefState, Coverage) {
+    fn positive(n: u32, rng: &mut crate::game::rng::Rng) -> (Torus, Sensor, BeliefState, Coverage) {
         let torus = Torus::new(n).unwrap();
         let sensor = Sensor::new(&torus, 1.0).unwrap();
         let weights: Vec<f64> = (0..n * n)
-            .map(|_| crate::rng::unit_f64(rng) + 0.01)
+            .map(|_| crate::game::rng::unit_f64(rng) + 0.01)
             .collect();
         let belief = weighted(&torus, &weights);
         let cov = Coverage::new(torus.cells());
@@ -377,13 +377,13 @@ mod tests {
         // Small lattices, where discs wrap onto themselves, radii from a
         // single cell to discs wider than the lattice, uneven masses (some
         // zero), and searched and simulated cover scattered at random.
-        let mut rng = crate::rng::stream(7, 0);
+        let mut rng = crate::game::rng::stream(7, 0);
         for n in [3u32, 4, 5, 8, 13] {
             let torus = Torus::new(n).unwrap();
             let weights: Vec<f64> = (0..n * n)
-                .map(|_| match crate::rng::below(&mut rng, 4) {
+                .map(|_| match crate::game::rng::below(&mut rng, 4) {
                     0 => 0.0,
-                    _ => crate::rng::unit_f64(&mut rng),
+                    _ => crate::game::rng::unit_f64(&mut rng),
                 })
                 .collect();
             for rv in [0.0, 1.0, 1.5, 2.0, 3.0] {
@@ -414,8 +414,8 @@ mod tests {
                         checked > 0 || round > 0,
                         "n {n} rv {rv}: something to compare"
                     );
-                    belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
-                    cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
+                    belief.search_around(&sensor, crate::game::rng::below(&mut rng, n * n));
+                    cov.cover(&sensor, &belief, crate::game::rng::below(&mut rng, n * n));
                 }
             }
         }
@@ -429,7 +429,7 @@ mod tests {
         // mass at each ℓ1 distance (each the whole lattice's when the box
         // wraps onto itself). A box one column short on the left, and rings
         // counted one farther out (tried), fail it.
-        let mut rng = crate::rng::stream(9, 0);
+        let mut rng = crate::game::rng::stream(9, 0);
         let mut rings = Vec::new();
         for n in [3u32, 4, 7, 12] {
             let (torus, sensor, mut belief, mut cov) = positive(n, &mut rng);
@@ -463,8 +463,8 @@ mod tests {
                         }
                     }
                 }
-                belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
-                cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
+                belief.search_around(&sensor, crate::game::rng::below(&mut rng, n * n));
+                cov.cover(&sensor, &belief, crate::game::rng::below(&mut rng, n * n));
             }
         }
     }
@@ -476,10 +476,12 @@ mod tests {
         // step by cover_step marks the same cells in the same order, with
         // the same gain bit for bit, as cover, and step_gain foresees that
         // gain bit for bit.
-        let mut rng = crate::rng::stream(11, 0);
+        let mut rng = crate::game::rng::stream(11, 0);
         for n in [3u32, 4, 5, 9] {
             let torus = Torus::new(n).unwrap();
-            let weights: Vec<f64> = (0..n * n).map(|_| crate::rng::unit_f64(&mut rng)).collect();
+            let weights: Vec<f64> = (0..n * n)
+                .map(|_| crate::game::rng::unit_f64(&mut rng))
+                .collect();
             for rv in [0.0, 1.0, 1.5, 2.0, 2.5] {
                 let sensor = Sensor::new(&torus, rv).unwrap();
                 if rv == 1.0 && n > 3 {
@@ -489,14 +491,14 @@ mod tests {
                 }
                 let mut belief = weighted(&torus, &weights);
                 for _ in 0..3 {
-                    belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
+                    belief.search_around(&sensor, crate::game::rng::below(&mut rng, n * n));
                 }
                 let (mut a, mut b) = (Coverage::new(torus.cells()), Coverage::new(torus.cells()));
-                let mut pos = crate::rng::below(&mut rng, n * n);
+                let mut pos = crate::game::rng::below(&mut rng, n * n);
                 a.cover(&sensor, &belief, pos);
                 b.cover(&sensor, &belief, pos);
                 for step in 0..40 {
-                    let m = Move::from_index(crate::rng::below(&mut rng, 4));
+                    let m = Move::from_index(crate::game::rng::below(&mut rng, 4));
                     pos = torus.step(pos, m);
                     let probe = b.step_gain(&sensor, &belief, m, pos);
                     let (ga, gb) = (
@@ -517,14 +519,14 @@ mod tests {
         // simulated covers interleaved with real searches, on lattices small
         // enough for discs to wrap. A third of the masses are zero, so the
         // count differs from the number of cells marked.
-        let mut rng = crate::rng::stream(13, 0);
+        let mut rng = crate::game::rng::stream(13, 0);
         for n in [3u32, 4, 6, 9] {
             let torus = Torus::new(n).unwrap();
             let cells = torus.cells();
             let weights: Vec<f64> = (0..n * n)
-                .map(|_| match crate::rng::below(&mut rng, 3) {
+                .map(|_| match crate::game::rng::below(&mut rng, 3) {
                     0 => 0.0,
-                    _ => crate::rng::unit_f64(&mut rng),
+                    _ => crate::game::rng::unit_f64(&mut rng),
                 })
                 .collect();
             for rv in [0.0, 1.0, 2.0] {
@@ -534,7 +536,7 @@ mod tests {
                 let (mut seen, mut simulated) = (vec![false; cells], 0);
                 let (mut counted, mut whole) = (0, 0);
                 for round in 0..40 {
-                    let cell = crate::rng::below(&mut rng, n * n);
+                    let cell = crate::game::rng::below(&mut rng, n * n);
                     let all_seen = sensor.around(cell).all(|c| seen[c as usize]);
                     assert_eq!(
                         b.disc_covered(&sensor, &belief, cell),
@@ -581,7 +583,7 @@ mod tests {
     fn the_largest_live_mass_of_each_row_is_the_row_scanned_cell_by_cell() {
         // Row lengths below, at and between multiples of the eight lanes, so
         // a row's largest live mass falls in the lanes and in the tail.
-        let mut rng = crate::rng::stream(17, 0);
+        let mut rng = crate::game::rng::stream(17, 0);
         let mut emptied = 0;
         for n in [3u32, 5, 8, 9, 13, 16, 19] {
             let (_, sensor, mut belief, mut cov) = positive(n, &mut rng);
@@ -599,8 +601,8 @@ mod tests {
                     assert_eq!(rows[y as usize], want, "n {n} round {round} row {y}");
                     emptied += (want == 0.0) as u32;
                 }
-                belief.search_around(&sensor, crate::rng::below(&mut rng, n * n));
-                cov.cover(&sensor, &belief, crate::rng::below(&mut rng, n * n));
+                belief.search_around(&sensor, crate::game::rng::below(&mut rng, n * n));
+                cov.cover(&sensor, &belief, crate::game::rng::below(&mut rng, n * n));
             }
         }
         assert!(emptied > 0, "some row covered whole");

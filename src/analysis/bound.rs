@@ -40,9 +40,9 @@
 //! `bound_timing` test in `tests/bound.rs` prints these).
 //! [`dp_optimum`] takes O(2^cells · cells) time and memory.
 
+use crate::analysis::stats::Sum;
 use crate::config::{Config, ConfigError};
-use crate::lattice::{Move, Sensor, Torus};
-use crate::stats::Sum;
+use crate::game::lattice::{Move, Sensor, Torus};
 use std::collections::VecDeque;
 use std::fmt;
 
@@ -630,7 +630,7 @@ impl MinTree {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::rng;
+    use crate::game::rng;
 
     /// The slack tree against a plain array, under random range adds. The
     /// greedy bound's own tests only ever add to prefixes of small trees,

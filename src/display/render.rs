@@ -1,7 +1,7 @@
 //! Heatmap rendering: values on the N×N lattice to one RGBA buffer.
 //!
 //! Pure Rust (no browser types), so it is tested natively; the frame
-//! builder ([`crate::view`]) fills the buffers the page puts on a canvas.
+//! builder ([`crate::display::view`]) fills the buffers the page puts on a canvas.
 //!
 //! The palettes are built here from first principles rather than copied from a
 //! table: each is a path through the OKLab colour space whose lightness rises
@@ -14,7 +14,7 @@
 //! * [`Palette::Ember`] — near-black → purple → orange → pale yellow, after inferno.
 //! * [`Palette::Cividis`] — navy → grey → yellow, no red–green component at all.
 
-use crate::named::named_enum;
+use crate::game::named::named_enum;
 
 named_enum! {
     /// A named colour ramp, sampled into a 256-entry lookup table.

@@ -1,8 +1,8 @@
 //! Target priors: each samples a target and reports its exact mass over all N² cells.
 
-use crate::lattice::Torus;
-use crate::named::named_enum;
-use crate::rng::{self, Rng};
+use crate::game::lattice::Torus;
+use crate::game::named::named_enum;
+use crate::game::rng::{self, Rng};
 use std::fmt;
 
 named_enum! {

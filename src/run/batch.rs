@@ -1,9 +1,9 @@
 //! Batches of trials, their report, and run fingerprints. The CLI, the
 //! page's worker pool and the tests all run trials through [`trial`].
 
+use crate::analysis::stats::Summary;
 use crate::config::{Config, ConfigError};
-use crate::episode::{Episode, TrialResult};
-use crate::stats::Summary;
+use crate::run::episode::{Episode, TrialResult};
 
 /// Runs trial `index` of `cfg` to the end.
 ///
@@ -32,7 +32,7 @@ pub struct Report<'a> {
     #[serde(flatten)]
     pub summary: &'a Summary,
     /// The lower bound on the mean steps of any searcher for this prior, N,
-    /// r_v, start and step cap ([`crate::bound::lower_bound_capped`]).
+    /// r_v, start and step cap ([`crate::analysis::bound::lower_bound_capped`]).
     pub lower_bound: f64,
     /// Mean steps ÷ the lower bound (`None` when the bound is 0).
     pub mean_over_bound: Option<f64>,

@@ -7,14 +7,16 @@
 //! from it, the facade exports it as [`schema`] for the page's URL parser and
 //! controls, and experiment sweeps name parameters by its keys.
 
-use crate::belief::Belief;
-use crate::lattice::{Torus, MAX_N, MIN_N};
-use crate::mcts::cells::DEFAULT_DECAY;
-use crate::mcts::pomcp::{Scale, DEFAULT_POMCP_DEPTH, DEFAULT_POMCP_PLAN};
-use crate::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
-use crate::mcts::{FinalRule, Variant};
-use crate::preset::Preset;
-use crate::prior::{self, PriorKind, PriorSpec};
+pub mod preset;
+
+use crate::config::preset::Preset;
+use crate::game::belief::Belief;
+use crate::game::lattice::{Torus, MAX_N, MIN_N};
+use crate::game::prior::{self, PriorKind, PriorSpec};
+use crate::searchers::mcts::cells::DEFAULT_DECAY;
+use crate::searchers::mcts::pomcp::{Scale, DEFAULT_POMCP_DEPTH, DEFAULT_POMCP_PLAN};
+use crate::searchers::mcts::tree::{DEFAULT_MAX_NODES, MAX_MAX_NODES, MIN_MAX_NODES};
+use crate::searchers::mcts::{FinalRule, Variant};
 use crate::searchers::{self, Base, PolicyKind, SearcherId, SweepPattern};
 use std::borrow::Cow;
 use std::fmt;
@@ -752,7 +754,7 @@ pub static PARAMS: &[Param] = &[
             min: 0,
             max: 1_000_000,
         },
-        default: Value::Int(crate::mcts::DEFAULT_ESCAPE as u64),
+        default: Value::Int(crate::searchers::mcts::DEFAULT_ESCAPE as u64),
         help: "MCTS: after this many real moves in a row that search no new cell, walk straight to the cell with the most unsearched mass per step of distance, then search again (not while the belief MCTS follows its plan, which cannot trap it); 0 never (the paper)",
         applies: Applies::Searcher,
         aliases: &[],
@@ -1001,7 +1003,7 @@ impl Config {
     /// A [`ConfigError`] for an unknown key or a value out of range.
     ///
     /// The key [`PRESET`] is not a field: it sets every value of that
-    /// preset (`crate::preset`), so a URL or a form can name one.
+    /// preset (`crate::config::preset`), so a URL or a form can name one.
     pub fn set(&mut self, key: &str, raw: &str) -> Result<(), ConfigError> {
         if key == PRESET {
             Preset::from_name(raw)?.apply(self);
@@ -1142,7 +1144,7 @@ pub struct Game {
     /// The lattice.
     pub torus: Torus,
     /// The sensor of radius r_v.
-    pub sensor: crate::lattice::Sensor,
+    pub sensor: crate::game::lattice::Sensor,
     /// The target prior.
     pub prior: prior::TargetPrior,
     /// The start cell.
@@ -1161,7 +1163,7 @@ impl Config {
         // n, r_v, the cells and the paint were checked against their ranges.
         let torus = Torus::new(self.n).expect("n was validated");
         let spec = self.prior_spec(&torus)?;
-        let sensor = crate::lattice::Sensor::new(&torus, self.rv).expect("rv was validated");
+        let sensor = crate::game::lattice::Sensor::new(&torus, self.rv).expect("rv was validated");
         let prior = prior::TargetPrior::new(&torus, &spec).expect("the prior was validated");
         let start = torus.cell(self.start[0] as i64 - 1, self.start[1] as i64 - 1);
         Ok(Game {

@@ -1,10 +1,10 @@
 //! What the searcher knows about the target: the prior it plans with, the
 //! cells it has searched, and the practice targets MCTS draws from that.
 
-use crate::lattice::Sensor;
-use crate::named::named_enum;
-use crate::prior::{Alias, TargetPrior};
-use crate::rng::Rng;
+use crate::game::lattice::Sensor;
+use crate::game::named::named_enum;
+use crate::game::prior::{Alias, TargetPrior};
+use crate::game::rng::Rng;
 
 named_enum! {
     /// Where practice targets come from.
@@ -30,7 +30,7 @@ pub struct BeliefState {
     /// Planning mass not yet searched, summed with compensation: a running
     /// difference from 1 keeps rounding dust of about 10⁻¹⁶, which near
     /// the end of a search outweighs the mass truly left.
-    remaining: crate::stats::Sum,
+    remaining: crate::analysis::stats::Sum,
     /// Unsearched cells with planning mass: at 0 no mass is left, exactly.
     cells_left: u32,
     /// Counts changes to `searched`, so a drawing of it can be reused.
@@ -66,7 +66,7 @@ impl BeliefState {
     /// for planning when the target is known.
     pub fn new(kind: Belief, prior: TargetPrior, plan: Option<TargetPrior>) -> BeliefState {
         let cells = prior.mass().len();
-        let mut remaining = crate::stats::Sum::default();
+        let mut remaining = crate::analysis::stats::Sum::default();
         let mut cells_left = 0;
         for &m in plan.as_ref().unwrap_or(&prior).mass() {
             remaining.add(m);
@@ -180,8 +180,8 @@ impl BeliefState {
 mod tests {
     use super::*;
     use crate::config::Config;
-    use crate::lattice::Torus;
-    use crate::prior::PriorSpec;
+    use crate::game::lattice::Torus;
+    use crate::game::prior::PriorSpec;
 
     /// A 10 × 10 lattice, r_v = 1, and a prior from `weights`.
     fn small(weights: Vec<f64>) -> (Sensor, BeliefState) {
@@ -251,12 +251,12 @@ mod tests {
         let (sensor, mut b) = small(w);
         b.search_around(&sensor, 0);
         let post = reference_posterior(&b);
-        let mut rng = crate::rng::stream(5, 0);
+        let mut rng = crate::game::rng::stream(5, 0);
         let mut counts = [0u32; 100];
         for _ in 0..40_000 {
             counts[b.posterior_target(&mut rng) as usize] += 1;
         }
-        crate::prior::assert_draws_follow(&counts, &post, 4.5);
+        crate::game::prior::assert_draws_follow(&counts, &post, 4.5);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! runs share their target.
 
 use crate::config::{Config, ConfigError};
-use crate::episode::{Episode, Status};
+use crate::run::episode::{Episode, Status};
 
 /// Episodes stepped together. A searcher that does not deliberate, racing
 /// one that does, makes no more real moves than it while it runs, so the
@@ -109,7 +109,7 @@ impl Race {
 
     /// One call of bounded length toward the moves asked for (see
     /// [`Episode::step_move_bounded`]): a planner makes at most
-    /// [`crate::episode::PLAN_CALL_SLICES`] slices of its plan, so the page's
+    /// [`crate::run::episode::PLAN_CALL_SLICES`] slices of its plan, so the page's
     /// worker can answer between calls. Returns true once every run has
     /// made them or ended.
     pub fn make_asked_moves(&mut self) -> bool {

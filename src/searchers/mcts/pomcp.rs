@@ -112,11 +112,11 @@
 use super::coverage_walk::CoverageWalk;
 use super::plan_walk::PlanWalk;
 use super::{argmax_random, ChildStat, DecisionView, LoopEnv, LoopReport, Stats};
-use crate::belief::BeliefState;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::named::named_enum;
-use crate::rng;
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::named::named_enum;
+use crate::game::rng;
 use crate::searchers::kept::{self, PlanKey};
 use crate::searchers::{Completion, FarGoal, Lookahead, Planning, SLICE_WORK};
 
@@ -157,7 +157,7 @@ const CUT_SHARE: f64 = 0.05;
 const MAX_INTENT: usize = 64;
 
 /// Below this unsearched planning mass the posterior is the uniform
-/// fallback of [`crate::belief::BeliefState`], which the planning mass
+/// fallback of [`crate::game::belief::BeliefState`], which the planning mass
 /// cannot measure: a loop then returns the sampled τ.
 const NO_MASS: f64 = 1e-300;
 
@@ -987,7 +987,7 @@ impl Stats for BeliefTree {
 mod tests {
     use super::*;
     use crate::config::Config;
-    use crate::episode::{Episode, Status};
+    use crate::run::episode::{Episode, Status};
 
     fn cfg(sigma: f64) -> Config {
         let mut c = Config::default();
@@ -1011,17 +1011,17 @@ mod tests {
     struct Hand {
         c: Config,
         game: crate::config::Game,
-        belief: crate::belief::BeliefState,
-        sensor: crate::lattice::Sensor,
+        belief: crate::game::belief::BeliefState,
+        sensor: crate::game::lattice::Sensor,
         policy: crate::searchers::Policy,
-        rng: crate::rng::Rng,
+        rng: crate::game::rng::Rng,
     }
 
     impl Hand {
         fn new(c: Config, seed: u64) -> Hand {
             let game = c.game().unwrap();
-            let mut belief = crate::belief::BeliefState::new(
-                crate::belief::Belief::Posterior,
+            let mut belief = crate::game::belief::BeliefState::new(
+                crate::game::belief::Belief::Posterior,
                 game.prior.clone(),
                 None,
             );
@@ -1039,7 +1039,7 @@ mod tests {
                 belief,
                 sensor,
                 policy,
-                rng: crate::rng::stream(seed, 0),
+                rng: crate::game::rng::stream(seed, 0),
             }
         }
 
@@ -1636,7 +1636,7 @@ mod tests {
             horizon: c.pomcp_plan,
             ..c.clone()
         };
-        crate::exact::exact_mean(&h).unwrap().mean
+        crate::analysis::exact::exact_mean(&h).unwrap().mean
     }
 
     #[test]
@@ -1651,7 +1651,7 @@ mod tests {
         let trials = 3;
         let mut sum = 0.0;
         for i in 0..trials {
-            let m = crate::exact::blind_mean(&c, i).unwrap().mean;
+            let m = crate::analysis::exact::blind_mean(&c, i).unwrap().mean;
             assert!(m <= plan + 1e-9, "trial {i}: {m} > the plan's {plan}");
             sum += m;
         }
@@ -1674,7 +1674,7 @@ mod tests {
         c.n = 128;
         let plan = plan_mean(&c);
         assert!((plan - 693.47).abs() < 0.01, "the plan's mean {plan}");
-        let m = crate::exact::blind_mean(&c, 0).unwrap().mean;
+        let m = crate::analysis::exact::blind_mean(&c, 0).unwrap().mean;
         assert!(m <= plan + 1e-9, "{m} > the plan's {plan}");
     }
 
@@ -1684,7 +1684,7 @@ mod tests {
         // random selection (c huge), which this test fails when tried, far
         // fewer trials are optimal.
         let mut c = cfg(0.0);
-        c.prior = crate::prior::PriorKind::Delta;
+        c.prior = crate::game::prior::PriorKind::Delta;
         let trials = 20;
         let optimal = (0..trials)
             .filter(|&i| {

@@ -1,7 +1,7 @@
 //! Summaries over trials: means with t-based 95% confidence intervals, the
 //! paper's ASOO, ratios, quartiles.
 
-use crate::episode::{Counters, TrialResult};
+use crate::run::episode::{Counters, TrialResult};
 
 /// The two-sided 95% quantile of Student's t with `df` degrees of freedom
 /// (NaN for 0): within 5 × 10⁻⁴ up to 30 (a three-decimal table) and

@@ -13,16 +13,16 @@ pub mod plan_walk;
 pub mod pomcp;
 pub mod tree;
 
-use crate::belief::BeliefState;
 use crate::config::Config;
-use crate::coverage::Coverage;
-use crate::lattice::Sensor;
-use crate::lattice::{Move, Torus};
-use crate::named::named_enum;
-use crate::rng::{self, Rng};
+use crate::display::view::Layer;
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::Sensor;
+use crate::game::lattice::{Move, Torus};
+use crate::game::named::named_enum;
+use crate::game::rng::{self, Rng};
 use crate::searchers::plan::{fallback_target, toward, FarScan};
 use crate::searchers::{Outcome, Planning, Policy, Searcher, SearcherInfo, Setup, Visit, World};
-use crate::view::Layer;
 use cells::CellTable;
 use code::CodeTable;
 use pomcp::BeliefTree;
@@ -632,7 +632,7 @@ mod tests {
     #[test]
     fn only_the_belief_mcts_draws_an_intended_path() {
         use crate::config::Config;
-        use crate::episode::Episode;
+        use crate::run::episode::Episode;
         for variant in ["cells", "tree", "code"] {
             let c = Config::default().with(&[("variant", variant), ("loops", "20")]);
             let mut ep = Episode::new(&c).unwrap();

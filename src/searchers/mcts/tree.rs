@@ -5,8 +5,8 @@
 use super::{
     argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee,
 };
-use crate::lattice::{Move, Torus};
-use crate::rng;
+use crate::game::lattice::{Move, Torus};
+use crate::game::rng;
 use crate::searchers::NoVisit;
 
 const NONE: u32 = u32::MAX;
@@ -268,8 +268,8 @@ pub(crate) fn reroot<N: Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::{Belief, BeliefState};
     use crate::config::Config;
+    use crate::game::belief::{Belief, BeliefState};
     use crate::searchers::{Policy, PolicyKind};
 
     /// Runs `loops` loops of `tree` from `root` on the game of a 12-torus
@@ -280,7 +280,7 @@ mod tests {
         let mut game = c.game().unwrap();
         let mut belief = BeliefState::new(Belief::Prior, game.prior.clone(), None);
         let mut policy = Policy::new(PolicyKind::Rw, &game.torus, 2.0, 0.2);
-        let mut rng = crate::rng::stream(9, 0);
+        let mut rng = crate::game::rng::stream(9, 0);
         for _ in 0..loops {
             let practice = belief.practice_target(&mut rng);
             game.sensor.arm(practice);

@@ -27,7 +27,7 @@
 //! table exactly; 0 clears it whenever the belief changes.
 
 use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
-use crate::lattice::{Move, Torus};
+use crate::game::lattice::{Move, Torus};
 use crate::searchers::Visit;
 
 /// Per-cell MCTS statistics.
@@ -282,7 +282,7 @@ mod tests {
         for cap in [1, 3] {
             let cap_text = cap.to_string();
             let c = cells(&[("rollout_cap", &cap_text), ("seed", "7"), ("loops", "50")]);
-            let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
+            let mut ep = crate::run::episode::Episode::trial(&c, 0).unwrap();
             for _ in 0..5 {
                 ep.step_move();
             }
@@ -302,7 +302,7 @@ mod tests {
             ("prior", "uniform"),
             ("belief", "prior"),
         ]);
-        let mut ep = crate::episode::Episode::trial(&c, 0).unwrap();
+        let mut ep = crate::run::episode::Episode::trial(&c, 0).unwrap();
         ep.step_move();
         assert!(ep.counters().rollouts >= 200);
     }

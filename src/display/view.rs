@@ -8,11 +8,11 @@
 //! when the display already holds that key, the layer is not coloured or
 //! sent again. Keys come from generation counters the episode keeps.
 
-use crate::batch::Fnv;
-use crate::episode::{Episode, Status};
-use crate::mcts::{self, DecisionView, FinalRule};
-use crate::named::named_enum;
-use crate::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
+use crate::display::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
+use crate::game::named::named_enum;
+use crate::run::batch::Fnv;
+use crate::run::episode::{Episode, Status};
+use crate::searchers::mcts::{self, DecisionView, FinalRule};
 use crate::searchers::{MoveScores, Planning};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -671,7 +671,7 @@ mod tests {
 
     #[test]
     fn leading_agrees_with_the_final_move() {
-        use crate::rng;
+        use crate::game::rng;
         let mut ep = Episode::new(&small()).unwrap();
         for _ in 0..4 {
             ep.step_loops(7);

@@ -1,6 +1,6 @@
 //! Exact random-walk hitting times on the torus, to check simulations against.
 
-use crate::lattice::{Sensor, Torus};
+use crate::game::lattice::{Sensor, Torus};
 
 /// Kemeny's constant of the simple random walk on the N×N torus:
 /// Σ over nonzero modes (a, b) of 1 / (1 − (cos 2πa/N + cos 2πb/N)/2).
@@ -52,7 +52,7 @@ pub fn rw_hitting_times(torus: &Torus, sensor: &Sensor, target: u32) -> Vec<f64>
         let Some(i) = idx[c] else { continue };
         a[i * w + i] += 1.0;
         a[i * w + m] = 1.0;
-        for mv in crate::lattice::Move::ALL {
+        for mv in crate::game::lattice::Move::ALL {
             let nb = torus.step(c as u32, mv) as usize;
             if let Some(j) = idx[nb] {
                 a[i * w + j] -= 0.25;

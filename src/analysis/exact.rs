@@ -5,14 +5,14 @@
 //! deterministic searcher follows one fixed path `p_0, p_1, …` in every
 //! trial up to detection, whatever the target. With `R_t` the prior mass
 //! outside the cells covered by `p_0 … p_t`, a trial's `min(T, cap)` has
-//! mean `Σ_{t<cap} R_t` ([`crate::bound::path_mean`]): exactly what a batch
+//! mean `Σ_{t<cap} R_t` ([`crate::analysis::bound::path_mean`]): exactly what a batch
 //! of infinitely many trials would report (a capped trial counted at its
 //! cap). The path is driven by a blind [`Episode`] until every cell with
 //! prior mass is covered or the step cap.
 
-use crate::bound;
+use crate::analysis::bound;
 use crate::config::{Config, ConfigError};
-use crate::episode::Episode;
+use crate::run::episode::Episode;
 use crate::searchers;
 use std::fmt;
 
@@ -149,7 +149,7 @@ pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ConfigError> {
 pub struct BlindReport<'a> {
     /// The exact means of the trials' blind paths: their mean estimates
     /// `E[min(T, step_cap)]`, with a 95% CI over trials.
-    pub blind_mean: crate::stats::MeanCi,
+    pub blind_mean: crate::analysis::stats::MeanCi,
     /// The smallest and largest trial's exact mean.
     pub min: f64,
     /// See `min`.

@@ -1,15 +1,15 @@
 //! One trial: a target, a searcher, and the moves until detection or the step cap.
 
-use crate::belief::BeliefState;
-use crate::budget::Budget;
 use crate::config::{Config, ConfigError, Game};
-use crate::lattice::{Move, Sensor, Torus};
-use crate::mcts::DecisionView;
-use crate::prior::{PriorSpec, TargetPrior};
-use crate::rng::{self, Rng};
+use crate::display::view::Layer;
+use crate::game::belief::BeliefState;
+use crate::game::budget::Budget;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::prior::{PriorSpec, TargetPrior};
+use crate::game::rng::{self, Rng};
+use crate::game::traces::Traces;
+use crate::searchers::mcts::DecisionView;
 use crate::searchers::{MoveScores, Planning, Searcher, SearcherInfo, Setup, World};
-use crate::traces::Traces;
-use crate::view::Layer;
 
 /// Where an episode stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -232,7 +232,7 @@ impl Episode {
     /// until the step cap as if the target were nowhere it looked. Until
     /// detection a searcher learns nothing of the target, so this is the
     /// path every trial follows up to its detection (for a deterministic
-    /// searcher: `crate::exact`).
+    /// searcher: `crate::analysis::exact`).
     ///
     /// # Errors
     /// A [`ConfigError`] naming the first invalid field.

@@ -7,7 +7,7 @@
 //! `EXPERIMENTS.md` documents each edit point by point.
 
 use crate::config::{Config, ConfigError};
-use crate::named::named_enum;
+use crate::game::named::named_enum;
 
 named_enum! {
     /// A named reading of the paper.

@@ -9,9 +9,9 @@
 //! "this deviation, then the plan", which is what the tree is for: finding
 //! where to leave the plan. It is deterministic and allocates nothing.
 
-use crate::belief::BeliefState;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
 use crate::searchers::plan::toward;
 
 /// Where a plan walk is along its plan.
@@ -60,7 +60,7 @@ mod tests {
         c.set("sigma", "inf").unwrap();
         let g = c.game().unwrap();
         let t = &g.torus;
-        let belief = crate::belief::BeliefState::new(c.belief, g.prior.clone(), None);
+        let belief = crate::game::belief::BeliefState::new(c.belief, g.prior.clone(), None);
         let mut cov = Coverage::new(t.cells());
         // A plan along row 5 from x = 1 to 6.
         let plan: Vec<u32> = (1..=6).map(|x| t.cell(x, 5)).collect();

@@ -20,10 +20,10 @@
 //! pointer past the covered ones that only moves forward within a rollout.
 //! Nothing here allocates after the first decision.
 
-use crate::belief::BeliefState;
-use crate::coverage::Coverage;
-use crate::lattice::{Move, Sensor, Torus};
-use crate::rng::{self, Rng};
+use crate::game::belief::BeliefState;
+use crate::game::coverage::Coverage;
+use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::rng::{self, Rng};
 
 /// The coverage walk's state: the mass order of the cells, and per rollout
 /// the waypoint and the last move.
@@ -269,8 +269,8 @@ impl CoverageWalk {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::belief::Belief;
-    use crate::prior::{PriorSpec, TargetPrior};
+    use crate::game::belief::Belief;
+    use crate::game::prior::{PriorSpec, TargetPrior};
 
     fn setup(n: u32, spec: PriorSpec) -> (Torus, Sensor, BeliefState) {
         let torus = Torus::new(n).unwrap();
@@ -289,7 +289,7 @@ mod tests {
         walk.begin_decision(belief);
         walk.begin_rollout();
         let mut cov = Coverage::new(torus.cells());
-        let mut rng = crate::rng::stream(7, 0);
+        let mut rng = crate::game::rng::stream(7, 0);
         let mut left = belief.remaining();
         let mut cell = start;
         let mut steps = 0;
@@ -337,7 +337,7 @@ mod tests {
         walk.begin_decision(&belief);
         walk.begin_rollout();
         let cov = Coverage::new(torus.cells());
-        let mut rng = crate::rng::stream(1, 0);
+        let mut rng = crate::game::rng::stream(1, 0);
         for _ in 0..20 {
             let m = walk.next_move(&torus, &sensor, &belief, &cov, &mut rng, start);
             assert!(matches!(m, Move::Right | Move::Down), "{m:?}");

@@ -23,7 +23,7 @@
 //! reset each move.
 
 use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
-use crate::lattice::{Move, Torus};
+use crate::game::lattice::{Move, Torus};
 use crate::searchers::Visit;
 
 /// Per-cell statistics of the authors' code.
@@ -162,8 +162,8 @@ impl Stats for CodeTable {
 #[cfg(test)]
 mod tests {
     use crate::config::Config;
-    use crate::episode::{Episode, Status};
-    use crate::view::Layer;
+    use crate::display::view::Layer;
+    use crate::run::episode::{Episode, Status};
 
     #[test]
     fn a_decision_counts_its_own_selections_and_a_reset_clears_the_table() {

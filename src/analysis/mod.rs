@@ -1,0 +1,6 @@
+//! Analysis: the lower bound, theory, statistics and exact means.
+
+pub mod bound;
+pub mod exact;
+pub mod stats;
+pub mod theory;

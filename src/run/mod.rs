@@ -1,0 +1,5 @@
+//! Runs: one trial, runs stepped together, batches of trials.
+
+pub mod batch;
+pub mod episode;
+pub mod race;
