@@ -10,7 +10,7 @@ use torus_search::bench::{mcts_loops, rollout_steps};
 use torus_search::config::Config;
 use torus_search::run::episode::Episode;
 use torus_search::searchers::mcts::Variant;
-use torus_search::searchers::PolicyKind;
+use torus_search::searchers::walks::policy::PolicyKind;
 
 const N: u32 = 40;
 const RV: f64 = 1.0;
@@ -41,10 +41,10 @@ fn mcts(c: &mut Criterion) {
     for variant in [Variant::Cells, Variant::Tree] {
         for sigma in [0.0, 5.0] {
             let cfg = Config {
-                variant,
                 sigma,
                 ..Config::default()
-            };
+            }
+            .with(&[("variant", variant.to_string().as_str())]);
             let name = format!("{}_sigma{sigma}", variant.name());
             g.throughput(Throughput::Elements(2_000));
             g.bench_function(BenchmarkId::new("loops", &name), |b| {

@@ -2,19 +2,23 @@
 //! with its own clock: `Instant` natively, `performance.now()` in wasm), so
 //! the same work is measured on every platform.
 
-use crate::config::{self, Config, ConfigError, Value};
+use crate::config::{self, Config};
 use crate::game::lattice::{Sensor, Torus};
 use crate::game::prior::{PriorSpec, TargetPrior};
 use crate::game::rng;
+use crate::param::{ParamError, Value};
 use crate::run::episode::Episode;
-use crate::searchers::{NoVisit, Policy, PolicyKind};
+use crate::searchers::mcts::search::VARIANT;
+use crate::searchers::mcts::variant::Variant;
+use crate::searchers::walks::policy::{Policy, PolicyKind};
+use crate::searchers::walks::visit::NoVisit;
 
 /// Runs rollouts of `kind` between uniformly random start and target cells on
 /// an `n`×`n` torus with radius `rv` until at least `min_steps` lattice steps
 /// are made. Returns the steps made.
 ///
 /// # Errors
-/// A [`ConfigError`] for a bad `n`, `rv` or `mu`.
+/// A [`ParamError`] for a bad `n`, `rv` or `mu`.
 pub fn rollout_steps(
     kind: PolicyKind,
     n: u32,
@@ -22,7 +26,7 @@ pub fn rollout_steps(
     mu: f64,
     seed: u64,
     min_steps: u64,
-) -> Result<u64, ConfigError> {
+) -> Result<u64, ParamError> {
     for (key, v) in [
         ("n", Value::Int(n as u64)),
         ("rv", Value::Float(rv)),
@@ -54,8 +58,8 @@ pub fn rollout_steps(
 /// episodes finished).
 ///
 /// # Errors
-/// A [`ConfigError`] naming the first invalid field.
-pub fn mcts_loops(cfg: &Config, loops: u64) -> Result<(u64, u64, u64), ConfigError> {
+/// A [`ParamError`] naming the first invalid field.
+pub fn mcts_loops(cfg: &Config, loops: u64) -> Result<(u64, u64, u64), ParamError> {
     let mut r = LoopRunner::new(cfg)?;
     r.run(loops)?;
     Ok((r.loops, r.moves, r.episodes))
@@ -80,11 +84,11 @@ impl LoopRunner {
     /// Starts at loop 0 of trial 0.
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field, or the searcher if
+    /// A [`ParamError`] naming the first invalid field, or the searcher if
     /// it does not deliberate (it has no loops).
-    pub fn new(cfg: &Config) -> Result<LoopRunner, ConfigError> {
+    pub fn new(cfg: &Config) -> Result<LoopRunner, ParamError> {
         if !cfg.searcher.info().deliberates {
-            return Err(ConfigError::new(
+            return Err(ParamError::new(
                 "searcher",
                 cfg.searcher,
                 "a searcher that deliberates (mcts) for a loop benchmark",
@@ -104,7 +108,7 @@ impl LoopRunner {
     ///
     /// # Errors
     /// Only if a new trial's config were invalid (it was checked in `new`).
-    pub fn run(&mut self, loops: u64) -> Result<(), ConfigError> {
+    pub fn run(&mut self, loops: u64) -> Result<(), ParamError> {
         let target = self.loops + loops;
         while self.loops < target {
             let before = self.episode.counters().rollouts;
@@ -142,14 +146,11 @@ pub fn move_cases(n: u32) -> Vec<(String, Config)> {
             searcher: id,
             ..base.clone()
         };
-        if (info.uses)(&cfg, "variant") {
-            for &variant in crate::searchers::mcts::Variant::ALL {
+        if info.reads(&VARIANT, &cfg.settings) {
+            for &variant in Variant::ALL {
                 out.push((
                     format!("{}-{variant}", info.name),
-                    Config {
-                        variant,
-                        ..cfg.clone()
-                    },
+                    cfg.clone().with(&[("variant", variant.name())]),
                 ));
             }
         } else {
@@ -178,8 +179,8 @@ impl MoveRunner {
     /// Starts before the first move of trial 0.
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field.
-    pub fn new(cfg: &Config) -> Result<MoveRunner, ConfigError> {
+    /// A [`ParamError`] naming the first invalid field.
+    pub fn new(cfg: &Config) -> Result<MoveRunner, ParamError> {
         cfg.validate()?;
         Ok(MoveRunner {
             cfg: cfg.clone(),
@@ -197,7 +198,7 @@ impl MoveRunner {
     ///
     /// # Errors
     /// Only if a new trial's config were invalid (it was checked in `new`).
-    pub fn ready(&mut self) -> Result<(), ConfigError> {
+    pub fn ready(&mut self) -> Result<(), ParamError> {
         if self.ended {
             self.trial += 1;
             self.episode = Episode::trial(&self.cfg, self.trial)?;
@@ -211,7 +212,7 @@ impl MoveRunner {
     ///
     /// # Errors
     /// As [`MoveRunner::ready`].
-    pub fn run(&mut self, moves: u64) -> Result<(), ConfigError> {
+    pub fn run(&mut self, moves: u64) -> Result<(), ParamError> {
         // Counted in attempts, so a trial detected at its start (no move)
         // cannot keep this running for ever.
         for _ in 0..moves {
@@ -244,7 +245,7 @@ mod tests {
                 info.name
             );
         }
-        for v in crate::searchers::mcts::Variant::ALL {
+        for v in Variant::ALL {
             assert!(cases.iter().any(|(l, _)| *l == format!("mcts-{v}")));
         }
         assert!(cases

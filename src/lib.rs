@@ -7,6 +7,8 @@
 
 pub mod game;
 
+pub mod param;
+
 pub mod searchers;
 
 pub mod config;
@@ -18,4 +20,6 @@ pub mod bench;
 pub mod display;
 pub mod experiment;
 
+#[cfg(not(target_arch = "wasm32"))]
+pub mod cli;
 pub mod wasm;

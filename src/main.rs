@@ -1,11 +1,8 @@
-//! Native command-line interface: `torus-search run` and `torus-search bench`.
-
-#[cfg(not(target_arch = "wasm32"))]
-mod cli;
+//! The `torus-search` binary: the command line of [`torus_search::cli`].
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() {
-    std::process::exit(cli::main());
+    std::process::exit(torus_search::cli::main());
 }
 
 #[cfg(target_arch = "wasm32")]

@@ -18,7 +18,7 @@ use crate::experiment::{self, Plan, ResultSet, Spec};
 use crate::game::prior;
 use crate::run::episode::{Episode, TrialResult, TRIAL_FIELDS};
 use crate::run::race::Race as CoreRace;
-use crate::searchers::PolicyKind;
+use crate::searchers::walks::policy::PolicyKind;
 use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
@@ -254,7 +254,7 @@ pub fn set_param(config: JsValue, key: &str, raw: &str) -> Result<JsValue, JsErr
 #[wasm_bindgen(js_name = presetOf)]
 pub fn preset_of(config: JsValue) -> Result<Option<String>, JsError> {
     let cfg = config_from_js(config)?;
-    Ok(crate::config::preset::Preset::matching(&cfg).map(|p| p.name().to_string()))
+    Ok(cfg.preset().map(|p| p.name().to_string()))
 }
 
 /// `[key, text]` pairs for a URL: every parameter with `full`, else the
@@ -552,17 +552,17 @@ impl MoveBench {
 
 /// One episode, or two racing on their own configs, advanced from JS and
 /// drawn through frames.
-#[wasm_bindgen]
-pub struct Race {
+#[wasm_bindgen(js_name = Race)]
+pub struct RaceHandle {
     race: CoreRace,
     frames: Vec<FrameBuilder>,
 }
 
-#[wasm_bindgen]
-impl Race {
+#[wasm_bindgen(js_class = Race)]
+impl RaceHandle {
     /// Trial 0 of each config in the array `configs` (one or two).
     #[wasm_bindgen(constructor)]
-    pub fn new(configs: JsValue) -> Result<Race, JsError> {
+    pub fn new(configs: JsValue) -> Result<RaceHandle, JsError> {
         let list: js_sys::Array = configs
             .dyn_into()
             .map_err(|_| JsError::new("configs must be an array of config objects"))?;
@@ -579,7 +579,7 @@ impl Race {
             .iter()
             .map(|r| FrameBuilder::new(r.torus().cells()))
             .collect();
-        Ok(Race { race, frames })
+        Ok(RaceHandle { race, frames })
     }
 
     /// What stays fixed for each run: `[{ label, config, searcher, deliberates,

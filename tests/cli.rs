@@ -15,165 +15,168 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// Bad command lines, each with the start of the one-line error it gets.
+const BAD_INPUT: &[(&[&str], &str)] = &[
+    (
+        &["run", "--n", "0"],
+        "--n must be an integer in 3..=1024, got 0",
+    ),
+    (
+        &["run", "--n", "1025"],
+        "--n must be an integer in 3..=1024",
+    ),
+    (&["run", "--sigma", "-1"], "--sigma must be a number >= 0"),
+    (&["run", "--sigma", "NaN"], "--sigma must be a number >= 0"),
+    (
+        &["run", "--mu", "1"],
+        "--mu must be a number in (1, 3], got 1",
+    ),
+    (&["run", "--mu", "3.5"], "--mu must be a number in (1, 3]"),
+    (
+        &["run", "--loops", "0"],
+        "--loops must be an integer in 1..=10000000, got 0",
+    ),
+    (
+        &["run", "--rv", "-0.5"],
+        "--rv must be a number in [0, 2048], got -0.5",
+    ),
+    (
+        &["run", "--start", "41,1"],
+        "--start must be x,y with each in 1..=40, got 41,1",
+    ),
+    (&["run", "--start", "a,b"], "--start must be x,y"),
+    (
+        &["run", "--target", "0,3"],
+        "--target must be x,y with each in 1..=40",
+    ),
+    (
+        &["run", "--searcher", "horizon", "--horizon", "0"],
+        "--horizon must be an integer in 1..=9, got 0",
+    ),
+    (
+        &["run", "--searcher", "horizon", "--horizon", "12"],
+        "--horizon must be an integer in 1..=9, got 12",
+    ),
+    (
+        &["run", "--searcher", "beam", "--beam-width", "0"],
+        "--beam-width must be an integer in 1..=400, got 0",
+    ),
+    (
+        &["run", "--searcher", "beam", "--beam-depth", "401"],
+        "--beam-depth must be an integer in 1..=400, got 401",
+    ),
+    (
+        &["run", "--searcher", "beam", "--beam-depth", "x"],
+        "--beam-depth must be an integer in 1..=400, got x",
+    ),
+    (
+        &["run", "--variant", "pomcp", "--pomcp-depth", "0"],
+        "--pomcp-depth must be an integer in 1..=100000, got 0",
+    ),
+    (
+        &["run", "--variant", "pomcp", "--pomcp-plan", "10"],
+        "--pomcp-plan must be an integer in 0..=9, got 10",
+    ),
+    (
+        &["run", "--variant", "pomcp", "--pomcp-scale", "max"],
+        "--pomcp-scale must be one of range, left, best, got max",
+    ),
+    (
+        &["run", "--searcher", "improve", "--base", "astar"],
+        "--base must be one of cover, sweep, horizon, best, got astar",
+    ),
+    (
+        &["run", "--searcher", "sweep", "--sweep-pattern", "spiral"],
+        "--sweep-pattern must be one of lawnmower, helix, got spiral",
+    ),
+    (
+        &["run", "--searcher", "rw", "--exact"],
+        "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got rw",
+    ),
+    (
+        &["run", "--exact"],
+        "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got mcts",
+    ),
+    (
+        &["run", "--searcher", "sweep", "--known", "--exact"],
+        "--exact cannot evaluate --known",
+    ),
+    (
+        // Two trials, so that a refusal lost runs quickly to exit 0.
+        &["run", "--known", "--blind", "--trials", "2"],
+        "--blind cannot evaluate --known",
+    ),
+    (
+        &["run", "--searcher", "bogus"],
+        "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, beam, spiral, got bogus",
+    ),
+    (
+        &["run", "--loops", "5", "--decision-ms", "2"],
+        "--loops does not apply to this configuration",
+    ),
+    (
+        &["run", "--prior", "uniform", "--sigma", "3"],
+        "--sigma does not apply to this configuration: it applies with prior gaussian",
+    ),
+    (
+        &["run", "--target", "2,2", "--prior", "delta"],
+        "--prior does not apply to this configuration: it applies without a fixed target",
+    ),
+    (
+        &["run", "--searcher", "rw", "--loops", "10"],
+        "--loops does not apply to this configuration: searcher rw does not read it",
+    ),
+    (
+        &["run", "--c", "nan"],
+        "--c must be a number in [0, 1000000]",
+    ),
+    (
+        &["run", "--epsilon", "2"],
+        "--epsilon must be a number in [0, 1]",
+    ),
+    (
+        &["run", "--trials", "0"],
+        "--trials must be an integer in 1..=100000000",
+    ),
+    (
+        &["run", "--threads", "0"],
+        "--threads must be an integer in 1..=1024",
+    ),
+    (
+        &["run", "--decision-ms", "-1"],
+        "--ms must be a number in [0.001, 600000], or 0 for none, got -1",
+    ),
+    (
+        &["run", "--rollout-cap", "0"],
+        "--rollout-cap must be an integer in 1..=",
+    ),
+    (
+        &["bench", "--scale", "0"],
+        "--scale must be a number in (0, 1000]",
+    ),
+    (
+        &["bench", "--episode", "Cargo.toml", "--loops", "5..5"],
+        "--loops must be FROM..TO with integers 0 <= FROM < TO",
+    ),
+    (
+        &["bench", "--episode", "Cargo.toml", "--loops", "x..9"],
+        "--loops must be FROM..TO",
+    ),
+    (
+        &["bench", "--episode", "no/such/file.json", "--loops", "0..9"],
+        "--episode no/such/file.json:",
+    ),
+    (
+        &["bench", "--episode", "Cargo.toml", "--loops", "0..9"],
+        "--episode Cargo.toml is not a torus-search config (JSON)",
+    ),
+    (&["bench", "--seed", "3"], "--episode <FILE>"),
+    (&["bench", "--whole"], "--moves"),
+];
+
 #[test]
 fn bad_input_names_the_flag_and_range_and_exits_2() {
-    let cases: &[(&[&str], &str)] = &[
-        (
-            &["run", "--n", "0"],
-            "--n must be an integer in 3..=1024, got 0",
-        ),
-        (
-            &["run", "--n", "1025"],
-            "--n must be an integer in 3..=1024",
-        ),
-        (&["run", "--sigma", "-1"], "--sigma must be a number >= 0"),
-        (&["run", "--sigma", "NaN"], "--sigma must be a number >= 0"),
-        (
-            &["run", "--mu", "1"],
-            "--mu must be a number in (1, 3], got 1",
-        ),
-        (&["run", "--mu", "3.5"], "--mu must be a number in (1, 3]"),
-        (
-            &["run", "--loops", "0"],
-            "--loops must be an integer in 1..=10000000, got 0",
-        ),
-        (
-            &["run", "--rv", "-0.5"],
-            "--rv must be a number in [0, 2048], got -0.5",
-        ),
-        (
-            &["run", "--start", "41,1"],
-            "--start must be x,y with each in 1..=40, got 41,1",
-        ),
-        (&["run", "--start", "a,b"], "--start must be x,y"),
-        (
-            &["run", "--target", "0,3"],
-            "--target must be x,y with each in 1..=40",
-        ),
-        (
-            &["run", "--searcher", "horizon", "--horizon", "0"],
-            "--horizon must be an integer in 1..=9, got 0",
-        ),
-        (
-            &["run", "--searcher", "horizon", "--horizon", "12"],
-            "--horizon must be an integer in 1..=9, got 12",
-        ),
-        (
-            &["run", "--searcher", "beam", "--beam-width", "0"],
-            "--beam-width must be an integer in 1..=400, got 0",
-        ),
-        (
-            &["run", "--searcher", "beam", "--beam-depth", "401"],
-            "--beam-depth must be an integer in 1..=400, got 401",
-        ),
-        (
-            &["run", "--searcher", "beam", "--beam-depth", "x"],
-            "--beam-depth must be an integer in 1..=400, got x",
-        ),
-        (
-            &["run", "--variant", "pomcp", "--pomcp-depth", "0"],
-            "--pomcp-depth must be an integer in 1..=100000, got 0",
-        ),
-        (
-            &["run", "--variant", "pomcp", "--pomcp-plan", "10"],
-            "--pomcp-plan must be an integer in 0..=9, got 10",
-        ),
-        (
-            &["run", "--variant", "pomcp", "--pomcp-scale", "max"],
-            "--pomcp-scale must be one of range, left, best, got max",
-        ),
-        (
-            &["run", "--searcher", "improve", "--base", "astar"],
-            "--base must be one of cover, sweep, horizon, best, got astar",
-        ),
-        (
-            &["run", "--searcher", "sweep", "--sweep-pattern", "spiral"],
-            "--sweep-pattern must be one of lawnmower, helix, got spiral",
-        ),
-        (
-            &["run", "--searcher", "rw", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got rw",
-        ),
-        (
-            &["run", "--exact"],
-            "--exact needs a deterministic searcher (sweep, horizon, improve, beam, spiral), got mcts",
-        ),
-        (
-            &["run", "--searcher", "sweep", "--known", "--exact"],
-            "--exact cannot evaluate --known",
-        ),
-        (
-            // Two trials, so that a refusal lost runs quickly to exit 0.
-            &["run", "--known", "--blind", "--trials", "2"],
-            "--blind cannot evaluate --known",
-        ),
-        (
-            &["run", "--searcher", "bogus"],
-            "--searcher must be one of mcts, rw, levy, nsarw, sweep, horizon, improve, beam, spiral, got bogus",
-        ),
-        (
-            &["run", "--loops", "5", "--decision-ms", "2"],
-            "--loops does not apply to this configuration",
-        ),
-        (
-            &["run", "--prior", "uniform", "--sigma", "3"],
-            "--sigma does not apply to this configuration: it applies with prior gaussian",
-        ),
-        (
-            &["run", "--target", "2,2", "--prior", "delta"],
-            "--prior does not apply to this configuration: it applies without a fixed target",
-        ),
-        (
-            &["run", "--searcher", "rw", "--loops", "10"],
-            "--loops does not apply to this configuration: searcher rw does not read it",
-        ),
-        (
-            &["run", "--c", "nan"],
-            "--c must be a number in [0, 1000000]",
-        ),
-        (
-            &["run", "--epsilon", "2"],
-            "--epsilon must be a number in [0, 1]",
-        ),
-        (
-            &["run", "--trials", "0"],
-            "--trials must be an integer in 1..=100000000",
-        ),
-        (
-            &["run", "--threads", "0"],
-            "--threads must be an integer in 1..=1024",
-        ),
-        (
-            &["run", "--decision-ms", "-1"],
-            "--ms must be a number in [0.001, 600000], or 0 for none, got -1",
-        ),
-        (
-            &["run", "--rollout-cap", "0"],
-            "--rollout-cap must be an integer in 1..=",
-        ),
-        (
-            &["bench", "--scale", "0"],
-            "--scale must be a number in (0, 1000]",
-        ),
-        (
-            &["bench", "--episode", "Cargo.toml", "--loops", "5..5"],
-            "--loops must be FROM..TO with integers 0 <= FROM < TO",
-        ),
-        (
-            &["bench", "--episode", "Cargo.toml", "--loops", "x..9"],
-            "--loops must be FROM..TO",
-        ),
-        (
-            &["bench", "--episode", "no/such/file.json", "--loops", "0..9"],
-            "--episode no/such/file.json:",
-        ),
-        (
-            &["bench", "--episode", "Cargo.toml", "--loops", "0..9"],
-            "--episode Cargo.toml is not a torus-search config (JSON)",
-        ),
-        (&["bench", "--seed", "3"], "--episode <FILE>"),
-        (&["bench", "--whole"], "--moves"),
-    ];
+    let cases = BAD_INPUT;
     for (args, want) in cases {
         let o = cli(args);
         let err = stderr(&o);

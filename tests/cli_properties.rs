@@ -15,9 +15,9 @@ use proptest::test_runner::{Config as PtConfig, RngAlgorithm, TestRng, TestRunne
 use std::process::Command;
 
 fn flags() -> Vec<String> {
-    let mut f: Vec<String> = torus_search::config::PARAMS
+    let mut f: Vec<String> = torus_search::config::params()
         .iter()
-        .map(|p| format!("--{}", p.flag()))
+        .map(|p| format!("--{}", p.param().flag()))
         .collect();
     for extra in [
         "--json",

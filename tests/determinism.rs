@@ -3,11 +3,9 @@
 
 use torus_search::config::preset::Preset;
 use torus_search::config::Config;
-use torus_search::game::belief::Belief;
 use torus_search::game::prior::PriorKind;
 use torus_search::run::batch::{fingerprint, run_trials};
-use torus_search::searchers::mcts::{FinalRule, Variant};
-use torus_search::searchers::{PolicyKind, SearcherId};
+use torus_search::searchers::registry::SearcherId;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 fn searcher(name: &str) -> SearcherId {
@@ -20,58 +18,41 @@ fn small() -> Config {
     Config {
         n: 12,
         sigma: 2.5,
-        loops: 16,
-        belief: Belief::Prior,
-        rollout_cap: 400,
         step_cap: 400,
-        decay: 1.0,
-        escape: 0,
         ..Config::default()
     }
+    .with(&[
+        ("loops", "16"),
+        ("belief", "prior"),
+        ("rollout_cap", "400"),
+        ("decay", "1.0"),
+        ("escape", "0"),
+    ])
 }
 
 fn cases() -> Vec<(&'static str, Config)> {
-    vec![
+    let mut cases = vec![
         ("cells rw", small()),
-        (
-            "tree rw",
-            Config {
-                variant: Variant::Tree,
-                ..small()
-            },
-        ),
+        ("tree rw", small().with(&[("variant", "tree")])),
         (
             "cells levy",
-            Config {
-                rollout: PolicyKind::Levy,
-                mu: 1.7,
-                ..small()
-            },
+            small().with(&[("rollout", "levy"), ("mu", "1.7")]),
         ),
         (
             "cells nsarw posterior",
-            Config {
-                rollout: PolicyKind::Nsarw,
-                belief: Belief::Posterior,
-                ..small()
-            },
+            small().with(&[("rollout", "nsarw"), ("belief", "posterior")]),
         ),
         (
             "tree greedy mean",
-            Config {
-                variant: Variant::Tree,
-                rollout: PolicyKind::Greedy,
-                final_rule: FinalRule::Mean,
-                ..small()
-            },
+            small().with(&[
+                ("variant", "tree"),
+                ("rollout", "greedy"),
+                ("final", "mean"),
+            ]),
         ),
         (
             "cells uct reset",
-            Config {
-                final_rule: FinalRule::Uct,
-                reset_each_move: true,
-                ..small()
-            },
+            small().with(&[("final", "uct"), ("reset_each_move", "true")]),
         ),
         (
             "levy walker",
@@ -91,12 +72,7 @@ fn cases() -> Vec<(&'static str, Config)> {
         ),
         (
             "code (the authors' statistics)",
-            Config {
-                variant: Variant::Code,
-                c: 2.0,
-                final_rule: FinalRule::Uct,
-                ..small()
-            },
+            small().with(&[("variant", "code"), ("c", "2.0"), ("final", "uct")]),
         ),
         (
             "rw walker",
@@ -109,13 +85,20 @@ fn cases() -> Vec<(&'static str, Config)> {
         ),
         (
             "cells decay (the default searcher)",
-            Config {
-                belief: Belief::Posterior,
-                decay: Config::default().decay,
-                escape: Config::default().escape,
-                ..small()
-            },
+            small().with(&[
+                ("belief", "posterior"),
+                ("decay", &Config::default().get("decay").unwrap()),
+                ("escape", &Config::default().get("escape").unwrap()),
+            ]),
         ),
+    ];
+    cases.extend(planner_cases());
+    cases
+}
+
+/// The pinned cases from "sweep" on, in their order in [`PINNED`].
+fn planner_cases() -> Vec<(&'static str, Config)> {
+    vec![
         (
             "sweep",
             Config {
@@ -127,67 +110,62 @@ fn cases() -> Vec<(&'static str, Config)> {
             "horizon",
             Config {
                 searcher: searcher("horizon"),
-                horizon: 4,
                 ..small()
-            },
+            }
+            .with(&[("horizon", "4")]),
         ),
         (
             "improve best",
             Config {
                 searcher: searcher("improve"),
-                base: torus_search::searchers::Base::Best,
-                horizon: 3,
                 prior: PriorKind::Uniform,
                 ..small()
-            },
+            }
+            .with(&[("base", "best"), ("horizon", "3")]),
         ),
         (
             // The paper's table traps; the escape walks it out.
             "cells escape",
             Config {
-                escape: 3,
                 prior: PriorKind::Uniform,
                 ..small()
-            },
+            }
+            .with(&[("escape", "3")]),
         ),
         (
             "pomcp (the belief MCTS)",
-            Config {
-                variant: Variant::Pomcp,
-                ..small()
-            },
+            small().with(&[("variant", "pomcp")]),
         ),
         (
             // Rollouts cut after 3 steps, finished by the reference walk;
             // no plan: coverage-walk rollouts and reference.
             "pomcp cut",
             Config {
-                variant: Variant::Pomcp,
-                pomcp_depth: 3,
-                pomcp_plan: 0,
                 prior: PriorKind::Uniform,
                 ..small()
-            },
+            }
+            .with(&[
+                ("variant", "pomcp"),
+                ("pomcp_depth", "3"),
+                ("pomcp_plan", "0"),
+            ]),
         ),
         (
             "beam",
             Config {
                 searcher: searcher("beam"),
-                horizon: 3,
-                beam_width: 8,
-                beam_depth: 12,
                 ..small()
-            },
+            }
+            .with(&[("horizon", "3"), ("beam_width", "8"), ("beam_depth", "12")]),
         ),
         (
             // The plan's rollouts rejoin it, cut after 3 steps.
             "pomcp plan cut",
             Config {
-                variant: Variant::Pomcp,
-                pomcp_depth: 3,
                 prior: PriorKind::Uniform,
                 ..small()
-            },
+            }
+            .with(&[("variant", "pomcp"), ("pomcp_depth", "3")]),
         ),
         (
             "spiral",
@@ -285,12 +263,10 @@ fn fingerprints_are_pinned() {
 #[wasm_bindgen_test(unsupported = test)]
 fn paper_presets_replay_their_pinned_cases() {
     for (preset, case) in [(Preset::PaperText, 0), (Preset::PaperCode, 8)] {
-        let mut cfg = Config {
-            decay: Config::default().decay,
-            ..small()
-        };
-        preset.apply(&mut cfg);
-        cfg.rollout_cap = small().rollout_cap;
+        let mut cfg = small().with(&[("decay", &Config::default().get("decay").unwrap())]);
+        cfg.apply_preset(preset);
+        cfg.set("rollout_cap", &small().get("rollout_cap").unwrap())
+            .unwrap();
         cfg.step_cap = small().step_cap;
         let (name, want) = &cases()[case];
         assert_eq!(&cfg, want, "{preset} is not the pinned case {name}");
@@ -329,11 +305,7 @@ fn trials_do_not_depend_on_how_a_batch_is_split() {
 fn loop_windows_replay_the_page_episode() {
     use torus_search::bench::LoopRunner;
     use torus_search::run::episode::{Episode, Status};
-    let cfg = Config {
-        loops: 30,
-        seed: 9,
-        ..small()
-    };
+    let cfg = Config { seed: 9, ..small() }.with(&[("loops", "30")]);
     let mut split = LoopRunner::new(&cfg).unwrap();
     split.run(457).unwrap();
     split.run(1234 - 457).unwrap();

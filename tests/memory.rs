@@ -6,13 +6,10 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use torus_search::config::Config;
-use torus_search::display::view::Layer;
-use torus_search::game::belief::Belief;
+use torus_search::game::layer::Layer;
 use torus_search::game::prior::PriorKind;
 use torus_search::run::episode::Episode;
-use torus_search::searchers::mcts::Variant;
-use torus_search::searchers::PolicyKind;
-use torus_search::searchers::SearcherId;
+use torus_search::searchers::registry::SearcherId;
 
 struct Counting;
 
@@ -64,33 +61,26 @@ fn peak_during(cfg: &Config, moves: u32) -> usize {
 fn an_episode_at_n_1024_stays_under_64_mib() {
     let big = Config {
         n: 1024,
-        loops: 20,
-        rollout_cap: 2000,
         ..Config::default()
-    };
+    }
+    .with(&[("loops", "20"), ("rollout_cap", "2000")]);
     let cases = [
         ("mcts cells gaussian", big.clone()),
         (
             "mcts cells uniform posterior",
             Config {
                 prior: PriorKind::Uniform,
-                belief: Belief::Posterior,
                 ..big.clone()
-            },
+            }
+            .with(&[("belief", "posterior")]),
         ),
         (
             "mcts tree gaussian",
-            Config {
-                variant: Variant::Tree,
-                ..big.clone()
-            },
+            big.clone().with(&[("variant", "tree")]),
         ),
         (
             "mcts cells nsarw rollouts",
-            Config {
-                rollout: PolicyKind::Nsarw,
-                ..big.clone()
-            },
+            big.clone().with(&[("rollout", "nsarw")]),
         ),
         (
             "nsarw walker uniform",

@@ -8,15 +8,14 @@
 use torus_search::analysis::stats::MeanCi;
 use torus_search::config::preset::Preset;
 use torus_search::config::Config;
-use torus_search::display::view::Layer;
+use torus_search::game::layer::Layer;
 use torus_search::run::batch;
 use torus_search::run::episode::Episode;
-use torus_search::searchers::mcts::Variant;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 fn paper_code() -> Config {
     let mut cfg = Config::default();
-    Preset::PaperCode.apply(&mut cfg);
+    cfg.apply_preset(Preset::PaperCode);
     cfg
 }
 
@@ -28,12 +27,11 @@ fn every_rollout_step_is_a_visit_and_expansions_are_not_loops() {
     let cfg = Config {
         n: 12,
         sigma: 3.0,
-        loops: 7,
-        rollout_cap: 300,
         step_cap: 200,
         seed: 5,
         ..paper_code()
-    };
+    }
+    .with(&[("loops", "7"), ("rollout_cap", "300")]);
     for trial in 0..6 {
         let mut e = Episode::trial(&cfg, trial).unwrap();
         // The first decision: neighbours still unvisited get an expansion
@@ -65,9 +63,9 @@ fn a_rollout_that_detects_at_once_makes_its_move_win() {
         target: Some([5, 6]),
         start: [5, 5],
         rv: 0.0,
-        loops: 20,
         ..paper_code()
-    };
+    }
+    .with(&[("loops", "20")]);
     for trial in 0..20 {
         let r = batch::trial(&cfg, trial).unwrap();
         assert_eq!((r.steps, r.found), (1, true), "trial {trial}");
@@ -86,7 +84,7 @@ fn paper_code_lands_inside_the_authors_ci_at_the_delta_target() {
         seed: 2026,
         ..paper_code()
     };
-    assert_eq!(cfg.variant, Variant::Code);
+    assert_eq!(cfg.get("variant").unwrap(), "code");
     let res = batch::run_trials(&cfg, 0, 100).unwrap();
     assert!(res.iter().all(|r| r.found));
     let m = MeanCi::of(res.iter().map(|r| (r.steps - r.optimal) as f64));

@@ -8,12 +8,13 @@ mod common;
 
 use common::searcher;
 use torus_search::analysis::bound::{dp_optimum, lower_bound};
+use torus_search::analysis::exact::base_mean;
 use torus_search::analysis::exact::{blind_mean, exact_mean, ExactError};
 use torus_search::analysis::stats::MeanCi;
 use torus_search::config::Config;
 use torus_search::game::prior::PriorKind;
 use torus_search::run::batch::run_trials;
-use torus_search::searchers::{base_mean, Base};
+use torus_search::searchers::planners::improve::Base;
 
 fn planner(name: &str, n: u32, prior: PriorKind, sigma: f64) -> Config {
     Config {
@@ -21,9 +22,9 @@ fn planner(name: &str, n: u32, prior: PriorKind, sigma: f64) -> Config {
         n,
         prior,
         sigma,
-        horizon: 4,
         ..Config::default()
     }
+    .with(&[("horizon", "4")])
 }
 
 fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
@@ -33,20 +34,13 @@ fn planners(n: u32, prior: PriorKind, sigma: f64) -> Vec<(String, Config)> {
         ("spiral".to_string(), planner("spiral", n, prior, sigma)),
         (
             "beam".to_string(),
-            Config {
-                beam_width: 12,
-                beam_depth: 30,
-                ..planner("beam", n, prior, sigma)
-            },
+            (planner("beam", n, prior, sigma)).with(&[("beam_width", "12"), ("beam_depth", "30")]),
         ),
     ];
     for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
         v.push((
             format!("improve {base}"),
-            Config {
-                base,
-                ..planner("improve", n, prior, sigma)
-            },
+            (planner("improve", n, prior, sigma)).with(&[("base", base.to_string().as_str())]),
         ));
     }
     v
@@ -134,6 +128,44 @@ fn exact_mean_matches_sampled_trials() {
     }
 }
 
+/// The path rollout improvement's `base` (cover or horizon) walks alone
+/// from the start of `cfg`, driven move by move: until the `with_mass`
+/// cells with mass are covered, or `limit` moves.
+fn walked_by_rule(
+    base: Base,
+    cfg: &Config,
+    g: &torus_search::config::Game,
+    belief: &torus_search::game::belief::BeliefState,
+    with_mass: u32,
+    limit: usize,
+) -> Vec<u32> {
+    use torus_search::game::coverage::Coverage;
+    use torus_search::searchers::planning::completion::{completion, FarGoal};
+    use torus_search::searchers::planning::coverage_walk::CoverageWalk;
+    use torus_search::searchers::planning::far_goal::FarScan;
+    use torus_search::searchers::planning::lookahead::{Lookahead, HORIZON};
+    let mut cov = Coverage::new(g.torus.cells());
+    let mut own = Vec::new();
+    if base == Base::Cover {
+        let (mut walker, mut scan) = (CoverageWalk::ordered(None), FarScan::default());
+        let (mut p, mut left) = (g.start, with_mass);
+        while left > 0 && own.len() < limit {
+            let m = walker.next_ordered(&g.torus, &g.sensor, belief, &cov, p, &mut scan, None);
+            p = g.torus.step(p, m);
+            left -= cov.cover_counted(&g.sensor, belief, p).1;
+            own.push(p);
+        }
+    } else {
+        let mut look = Lookahead::new(cfg.settings.u32(&HORIZON));
+        let (torus, sensor) = (&g.torus, &g.sensor);
+        let (cap, far) = (limit, FarGoal::Stuck);
+        completion(
+            &mut look, torus, sensor, belief, &mut cov, g.start, None, cap, far, &mut own,
+        );
+    }
+    own
+}
+
 /// What rollout improvement is measured against: each base alone, scored
 /// by `base_mean` along the base's own path. The path is a lattice path
 /// from the start that stops at the step cap or once every cell with mass
@@ -147,9 +179,12 @@ fn exact_mean_matches_sampled_trials() {
 fn each_base_alone_is_scored_along_its_own_path() {
     use torus_search::analysis::bound::path_mean;
     use torus_search::game::belief::{Belief, BeliefState};
-    use torus_search::game::coverage::Coverage;
-    use torus_search::searchers::plan::{CoverWalk, FarScan};
-    use torus_search::searchers::{completion, FarGoal, Lookahead, SweepPattern};
+    
+    
+    
+
+    
+    
     for (n, prior, sigma, cap) in [
         (16, PriorKind::Gaussian, 2.5, 5000),
         (13, PriorKind::Uniform, 0.0, 5000),
@@ -201,44 +236,16 @@ fn each_base_alone_is_scored_along_its_own_path() {
                 assert_eq!(cap, 30, "{case}: capped");
             }
             // What the base's rule walks, driven here move by move.
-            let mut cov = Coverage::new(g.torus.cells());
-            let mut own = Vec::new();
             let rule = match base {
-                Base::Cover => {
-                    let (mut walker, mut scan) = (CoverWalk::new(None), FarScan::default());
-                    let (mut p, mut left) = (g.start, with_mass);
-                    while left > 0 && own.len() < limit {
-                        let m = walker
-                            .next_move(&g.torus, &g.sensor, &belief, &cov, p, &mut scan, None);
-                        p = g.torus.step(p, m);
-                        left -= cov.cover_counted(&g.sensor, &belief, p).1;
-                        own.push(p);
-                    }
-                    Some(own)
-                }
-                Base::Horizon => {
-                    completion(
-                        &mut Lookahead::new(cfg.horizon),
-                        &g.torus,
-                        &g.sensor,
-                        &belief,
-                        &mut cov,
-                        g.start,
-                        None,
-                        limit,
-                        FarGoal::Stuck,
-                        &mut own,
-                    );
-                    Some(own)
+                Base::Cover | Base::Horizon => {
+                    Some(walked_by_rule(base, &cfg, &g, &belief, with_mass, limit))
                 }
                 Base::Sweep => {
-                    let sweep = Config {
-                        sweep_pattern: SweepPattern::Lawnmower,
-                        ..Config {
-                            searcher: searcher("sweep"),
-                            ..cfg.clone()
-                        }
-                    };
+                    let sweep = (Config {
+                        searcher: searcher("sweep"),
+                        ..cfg.clone()
+                    })
+                    .with(&[("sweep_pattern", "lawnmower")]);
                     let plain = exact_mean(&sweep).unwrap();
                     println!(
                         "{case}: {mean:.4} against the plain sweep's {:.4}",
@@ -281,10 +288,10 @@ fn rollout_improvement_plans_up_to_the_step_cap_and_no_further() {
     use torus_search::run::episode::Episode;
     for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
         let cfg = Config {
-            base,
             step_cap: 30,
             ..planner("improve", 16, PriorKind::Gaussian, 4.0)
-        };
+        }
+        .with(&[("base", base.to_string().as_str())]);
         let mut ep = Episode::blind(&cfg).unwrap();
         for m in 1..cfg.step_cap {
             ep.step_move();
@@ -313,10 +320,8 @@ fn rollout_improvement_is_never_worse_than_its_base() {
         (10, PriorKind::Gaussian, 1.0),
     ] {
         for base in [Base::Cover, Base::Sweep, Base::Horizon, Base::Best] {
-            let cfg = Config {
-                base,
-                ..planner("improve", n, prior, sigma)
-            };
+            let cfg =
+                (planner("improve", n, prior, sigma)).with(&[("base", base.to_string().as_str())]);
             let improved = exact_mean(&cfg).unwrap().mean;
             let alone = base_mean(&cfg, base).unwrap().0;
             println!("n={n} {prior} σ={sigma} base {base}: {alone:.4} → {improved:.4}");
@@ -341,11 +346,10 @@ fn beam_is_never_worse_than_the_horizon_rule() {
         (16, PriorKind::Delta, 0.0),
     ] {
         for (width, depth) in [(1, 1), (10, 40), (40, 80)] {
-            let cfg = Config {
-                beam_width: width,
-                beam_depth: depth,
-                ..planner("beam", n, prior, sigma)
-            };
+            let cfg = (planner("beam", n, prior, sigma)).with(&[
+                ("beam_width", width.to_string().as_str()),
+                ("beam_depth", depth.to_string().as_str()),
+            ]);
             let beam = exact_mean(&cfg).unwrap().mean;
             let rule = base_mean(&cfg, Base::Horizon).unwrap().0;
             println!("n={n} {prior} σ={sigma} width {width} depth {depth}: rule {rule:.4} → beam {beam:.4}");
@@ -424,7 +428,7 @@ fn delta_prior_is_found_in_39_moves_every_trial() {
         if name == "sweep" {
             continue;
         }
-        let cfg = Config { horizon: 6, ..cfg };
+        let cfg = cfg.with(&[("horizon", "6")]);
         let e = exact_mean(&cfg).unwrap();
         assert_eq!(e.mean, 39.0, "{name}");
         // The path is driven until the target's cell is covered, not to the
@@ -440,10 +444,7 @@ fn delta_prior_is_found_in_39_moves_every_trial() {
 /// receding horizon, exactly.
 #[test]
 fn horizon_meets_the_uniform_goal_exactly() {
-    let cfg = Config {
-        horizon: 6,
-        ..planner("horizon", 40, PriorKind::Uniform, 0.0)
-    };
+    let cfg = (planner("horizon", 40, PriorKind::Uniform, 0.0)).with(&[("horizon", "6")]);
     let e = exact_mean(&cfg).unwrap().mean;
     assert!(e <= 270.0, "horizon uniform {e}");
 }
@@ -481,10 +482,10 @@ fn cost_per_move() {
     use torus_search::run::episode::Episode;
     for n in [40, 256] {
         for (name, cfg) in planners(n, PriorKind::Gaussian, n as f64 / 4.0) {
-            let cfg = Config {
-                horizon: if name == "horizon" { 6 } else { 3 },
-                ..cfg
-            };
+            let cfg = cfg.with(&[(
+                "horizon",
+                (if name == "horizon" { 6 } else { 3 }).to_string().as_str(),
+            )]);
             let moves = if name.starts_with("improve") { 10 } else { 200 };
             let mut ep = Episode::blind(&cfg).unwrap();
             let t = std::time::Instant::now();
@@ -494,7 +495,8 @@ fn cost_per_move() {
             let ms = t.elapsed().as_secs_f64() * 1e3 / moves as f64;
             println!(
                 "N={n} {name} (horizon {}): {ms:.3} ms per move",
-                cfg.horizon
+                cfg.settings
+                    .u32(&torus_search::searchers::planning::lookahead::HORIZON)
             );
         }
     }
@@ -511,11 +513,9 @@ fn compared_completion_is_the_horizon_searchers_path() {
     use torus_search::game::belief::{Belief, BeliefState};
     use torus_search::game::coverage::Coverage;
     use torus_search::run::episode::Episode;
-    use torus_search::searchers::{completion, FarGoal, Lookahead};
-    let cfg = Config {
-        horizon: 5,
-        ..planner("horizon", 64, PriorKind::Gaussian, 8.0)
-    };
+    use torus_search::searchers::planning::completion::{completion, FarGoal};
+    use torus_search::searchers::planning::lookahead::Lookahead;
+    let cfg = (planner("horizon", 64, PriorKind::Gaussian, 8.0)).with(&[("horizon", "5")]);
     let game = cfg.game().unwrap();
     let mut ep = Episode::blind_trial(&cfg, 0).unwrap();
     let moves = exact_mean(&cfg).unwrap().moves;
@@ -527,7 +527,10 @@ fn compared_completion_is_the_horizon_searchers_path() {
     let mean = |far| {
         let mut out = Vec::new();
         completion(
-            &mut Lookahead::new(cfg.horizon),
+            &mut Lookahead::new(
+                cfg.settings
+                    .u32(&torus_search::searchers::planning::lookahead::HORIZON),
+            ),
             &game.torus,
             &game.sensor,
             &belief,
@@ -560,7 +563,7 @@ fn compared_completion_is_the_horizon_searchers_path() {
 #[test]
 fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes() {
     use torus_search::run::episode::{Episode, Status};
-    use torus_search::searchers::sweep_path;
+    use torus_search::searchers::planners::sweep::sweep_path;
     for (prior, sigma) in [(PriorKind::Gaussian, 2.5), (PriorKind::Uniform, 0.0)] {
         for (name, cfg) in planners(20, prior, sigma) {
             let mut ep = Episode::trial(&cfg, 0).unwrap();
@@ -568,7 +571,16 @@ fn every_planner_shows_a_plan_from_where_it_stands_and_scores_the_move_it_makes(
             let next_to = |a: u32, b: u32| torus.move_to(a, b).is_some();
             let mut sweep = Vec::new();
             let g = cfg.game().unwrap();
-            sweep_path(&torus, &g.sensor, g.start, cfg.sweep_pattern, &mut sweep);
+            sweep_path(
+                &torus,
+                &g.sensor,
+                g.start,
+                cfg.settings
+                    .choice::<torus_search::searchers::planners::sweep::SweepPattern>(
+                        &torus_search::searchers::planners::sweep::SWEEP_PATTERN,
+                    ),
+                &mut sweep,
+            );
             let (mut planned, mut scored, mut steps) = (0, 0, 0);
             while steps < 300 {
                 let from = ep.position();

@@ -13,13 +13,15 @@ use common::{chi2_crit_1e4, chi2_merged};
 use torus_search::analysis::stats::MeanCi;
 use torus_search::analysis::theory;
 use torus_search::config::Config;
-use torus_search::display::view::Layer;
 use torus_search::game::lattice::{Move, Sensor, Torus};
+use torus_search::game::layer::Layer;
 use torus_search::game::prior::{PriorKind, PriorSpec, TargetPrior};
 use torus_search::game::rng;
 use torus_search::run::batch;
 use torus_search::run::episode::{Episode, Status};
-use torus_search::searchers::{flight_end, Directions, FlightLengths, NoVisit, Policy, PolicyKind};
+use torus_search::searchers::walks::levy::{flight_end, Directions, FlightLengths};
+use torus_search::searchers::walks::policy::{Policy, PolicyKind};
+use torus_search::searchers::walks::visit::NoVisit;
 
 fn rw_config(n: u32, rv: f64) -> Config {
     Config {

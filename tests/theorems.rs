@@ -22,7 +22,6 @@ use torus_search::game::lattice::Move;
 use torus_search::game::prior::PriorKind;
 use torus_search::run::episode::{Episode, Status};
 use torus_search::searchers::mcts::Variant;
-use torus_search::searchers::PolicyKind;
 
 // ---------------------------------------------------------------------------
 // Theorem 1
@@ -39,12 +38,14 @@ fn t1_config(variant: Variant, rv: f64, start: [u32; 2], loops: u32) -> Config {
         start,
         target: Some(T1_TARGET),
         searcher: common::searcher("mcts"),
-        variant,
-        rollout: PolicyKind::Rw,
-        loops,
-        rollout_cap: 2_000,
         ..Config::default()
     }
+    .with(&[
+        ("variant", variant.to_string().as_str()),
+        ("rollout", "rw"),
+        ("loops", loops.to_string().as_str()),
+        ("rollout_cap", "2000"),
+    ])
 }
 
 /// How many of `trials` independent episodes make a first real move that
@@ -241,16 +242,14 @@ fn theorem2_cells_variant_avoids_its_own_path_like_nsarw() {
         n: N,
         rv: 1.0,
         prior: PriorKind::Uniform,
-        loops: 50,
-        rollout_cap: 2_000,
         ..Config::default()
-    };
+    }
+    .with(&[("loops", "50"), ("rollout_cap", "2000")]);
     let mcts = Config {
         searcher: common::searcher("mcts"),
-        variant: Variant::Cells,
-        rollout: PolicyKind::Rw,
         ..base.clone()
-    };
+    }
+    .with(&[("variant", "cells"), ("rollout", "rw")]);
     let rw = Config {
         searcher: common::searcher("rw"),
         ..base.clone()

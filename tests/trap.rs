@@ -13,13 +13,15 @@ fn trap_config(decay: f64) -> Config {
     Config {
         n: 20,
         prior: PriorKind::Uniform,
-        loops: 16,
-        rollout_cap: 400,
         step_cap: 20 * 20 * 20,
-        decay,
         seed: 3,
         ..Config::default()
     }
+    .with(&[
+        ("loops", "16"),
+        ("rollout_cap", "400"),
+        ("decay", decay.to_string().as_str()),
+    ])
 }
 
 /// N = 20, uniform target, posterior practice targets, L = 16, 200 trials:
@@ -29,15 +31,25 @@ fn trap_config(decay: f64) -> Config {
 /// against 97.3 ± 5.2 with the default decay 0.8 (mean + 4 SE = 118).
 #[wasm_bindgen_test::wasm_bindgen_test(unsupported = test)]
 fn default_cells_searcher_is_not_trapped_by_its_stale_table() {
-    let cfg = trap_config(Config::default().decay);
-    assert!(cfg.decay < 1.0, "the default must fade the table");
+    let cfg = trap_config(
+        Config::default()
+            .settings
+            .float(&torus_search::searchers::mcts::cells::DECAY),
+    );
+    assert!(
+        cfg.settings
+            .float(&torus_search::searchers::mcts::cells::DECAY)
+            < 1.0,
+        "the default must fade the table"
+    );
     let res = batch::run_trials(&cfg, 0, 200).unwrap();
     let capped = res.iter().filter(|r| !r.found).count();
     let m = MeanCi::of(res.iter().map(|r| r.steps as f64));
     let lb = bound::lower_bound_capped(&cfg).unwrap();
     println!(
         "decay {}: mean {:.1} ± {:.1} (SE), bound {lb:.1}, capped {capped}",
-        cfg.decay,
+        cfg.settings
+            .float(&torus_search::searchers::mcts::cells::DECAY),
         m.mean,
         m.se()
     );

@@ -6,7 +6,7 @@
 
 use torus_search::config::Config;
 use torus_search::run::episode::Episode as CoreEpisode;
-use torus_search::wasm::{self as facade, Race};
+use torus_search::wasm::{self as facade, RaceHandle as Race};
 use wasm_bindgen::JsValue;
 use wasm_bindgen_test::*;
 
@@ -72,7 +72,7 @@ fn version_schema_and_config_checks() {
         .iter()
         .map(|p| get(&p, "key").as_string().unwrap())
         .collect();
-    assert_eq!(keys.len(), torus_search::config::PARAMS.len());
+    assert_eq!(keys.len(), torus_search::config::params().len());
     assert!(keys.contains(&"seed".to_string()));
     let loops = params
         .iter()

@@ -40,9 +40,10 @@
 //! `bound_timing` test in `tests/bound.rs` prints these).
 //! [`dp_optimum`] takes O(2^cells · cells) time and memory.
 
-use crate::analysis::stats::Sum;
-use crate::config::{Config, ConfigError};
+use crate::config::Config;
 use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::sum::Sum;
+use crate::param::ParamError;
 use std::collections::VecDeque;
 use std::fmt;
 
@@ -92,8 +93,8 @@ pub struct PathMean {
 /// step cap: [`lower_bound_capped`] bounds what a batch reports.
 ///
 /// # Errors
-/// The [`ConfigError`] of [`Config::validate`] or [`Config::prior_spec`].
-pub fn lower_bound(cfg: &Config) -> Result<f64, ConfigError> {
+/// The [`ParamError`] of [`Config::validate`] or [`Config::prior_spec`].
+pub fn lower_bound(cfg: &Config) -> Result<f64, ParamError> {
     game_bound(cfg, u32::MAX)
 }
 
@@ -104,11 +105,11 @@ pub fn lower_bound(cfg: &Config) -> Result<f64, ConfigError> {
 ///
 /// # Errors
 /// As [`lower_bound`].
-pub fn lower_bound_capped(cfg: &Config) -> Result<f64, ConfigError> {
+pub fn lower_bound_capped(cfg: &Config) -> Result<f64, ParamError> {
     game_bound(cfg, cfg.step_cap)
 }
 
-fn game_bound(cfg: &Config, cap: u32) -> Result<f64, ConfigError> {
+fn game_bound(cfg: &Config, cap: u32) -> Result<f64, ParamError> {
     let crate::config::Game {
         torus,
         sensor,

@@ -11,9 +11,14 @@
 //! prior mass is covered or the step cap.
 
 use crate::analysis::bound;
-use crate::config::{Config, ConfigError};
+use crate::config::Config;
+use crate::game::belief::BeliefState;
+use crate::param::ParamError;
 use crate::run::episode::Episode;
 use crate::searchers;
+use crate::searchers::mcts::search::BELIEF;
+use crate::searchers::planners::improve::{base_alone, Base};
+use crate::searchers::planning::lookahead::HORIZON;
 use std::fmt;
 
 /// Why a configuration cannot be evaluated exactly.
@@ -31,7 +36,7 @@ pub enum ExactError {
         flag: &'static str,
     },
     /// The configuration is invalid.
-    Config(ConfigError),
+    Config(ParamError),
 }
 
 impl fmt::Display for ExactError {
@@ -53,8 +58,8 @@ impl fmt::Display for ExactError {
 
 impl std::error::Error for ExactError {}
 
-impl From<ConfigError> for ExactError {
-    fn from(e: ConfigError) -> ExactError {
+impl From<ParamError> for ExactError {
+    fn from(e: ParamError) -> ExactError {
         ExactError::Config(e)
     }
 }
@@ -66,7 +71,7 @@ pub fn deterministic_names() -> Vec<&'static str> {
         .iter()
         .filter(|s| {
             cfg.searcher = searchers::SearcherId::parse(s.name).expect("registered");
-            searchers::deterministic(&cfg)
+            cfg.searcher.info().deterministic
         })
         .map(|s| s.name)
         .collect()
@@ -95,7 +100,7 @@ pub struct Exact {
 /// an invalid configuration.
 pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
     cfg.validate()?;
-    if !searchers::deterministic(cfg) {
+    if !cfg.searcher.info().deterministic {
         return Err(ExactError::NotDeterministic {
             searcher: cfg.searcher.name(),
         });
@@ -104,6 +109,29 @@ pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
         return Err(ExactError::Known { flag: "--exact" });
     }
     Ok(blind_mean(cfg, 0)?)
+}
+
+/// The exact `Σ_{t<cap} R_t` of rollout improvement's `base` alone from
+/// the start of `cfg` (what rollout improvement is never worse than), with
+/// the cells of the base's path after the start (the cheapest base's, with
+/// `best`).
+///
+/// # Errors
+/// The [`ParamError`] of [`Config::game`].
+pub fn base_mean(cfg: &Config, base: Base) -> Result<(f64, Vec<u32>), ParamError> {
+    let g = cfg.game()?;
+    let mut belief = BeliefState::new(cfg.settings.choice(&BELIEF), g.prior.clone(), None);
+    belief.search_around(&g.sensor, g.start);
+    let h = cfg.settings.u32(&HORIZON);
+    Ok(base_alone(
+        &g.torus,
+        &g.sensor,
+        &belief,
+        g.start,
+        base,
+        h,
+        cfg.step_cap,
+    ))
 }
 
 /// The exact mean of trial `i`'s blind path: `Σ_{t<cap} R_t` along the
@@ -115,8 +143,8 @@ pub fn exact_mean(cfg: &Config) -> Result<Exact, ExactError> {
 /// `known`.
 ///
 /// # Errors
-/// The [`ConfigError`] of an invalid configuration.
-pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ConfigError> {
+/// The [`ParamError`] of an invalid configuration.
+pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ParamError> {
     let game = cfg.game()?;
     let mass = game.prior.mass();
     let mut covered = vec![false; game.torus.cells()];

@@ -2,5 +2,6 @@
 
 pub mod bound;
 pub mod exact;
+pub mod report;
 pub mod stats;
 pub mod theory;

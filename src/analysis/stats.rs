@@ -1,7 +1,8 @@
 //! Summaries over trials: means with t-based 95% confidence intervals, the
 //! paper's ASOO, ratios, quartiles.
 
-use crate::run::episode::{Counters, TrialResult};
+use crate::game::counters::Counters;
+use crate::run::episode::TrialResult;
 
 /// The two-sided 95% quantile of Student's t with `df` degrees of freedom
 /// (NaN for 0): within 5 × 10⁻⁴ up to 30 (a three-decimal table) and
@@ -34,34 +35,6 @@ pub fn t975(df: u64) -> f64 {
                 + (79.0 * z9 + 776.0 * z7 + 1482.0 * z5 - 1920.0 * z3 - 945.0 * z)
                     / (92160.0 * v.powi(4))
         }
-    }
-}
-
-/// A Neumaier-compensated running sum, for sums of many small terms or of
-/// nearly cancelling ones (the bound, exact path means, planners).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Sum {
-    s: f64,
-    c: f64,
-}
-
-impl Sum {
-    /// Adds `x`.
-    #[inline]
-    pub fn add(&mut self, x: f64) {
-        let t = self.s + x;
-        self.c += if self.s.abs() >= x.abs() {
-            (self.s - t) + x
-        } else {
-            (x - t) + self.s
-        };
-        self.s = t;
-    }
-
-    /// The sum.
-    #[inline]
-    pub fn value(&self) -> f64 {
-        self.s + self.c
     }
 }
 
@@ -341,31 +314,6 @@ mod tests {
         for df in 1..200 {
             assert!(t975(df + 1) < t975(df), "t975 rises at df = {df}");
         }
-    }
-
-    #[test]
-    fn compensated_sum_keeps_what_plain_addition_loses() {
-        // Neumaier's example: 1 + 1e100 + 1 − 1e100 is 2; plain addition
-        // (and Kahan's, which compensates only for the smaller addend)
-        // gives 0.
-        let mut s = Sum::default();
-        for x in [1.0, 1e100, 1.0, -1e100] {
-            s.add(x);
-        }
-        assert_eq!(s.value(), 2.0);
-        // Ten million tenths: plain addition drifts by about 1e-4 here;
-        // the compensated sum is the correctly rounded 1e6.
-        let mut s = Sum::default();
-        let mut plain = 0.0f64;
-        for _ in 0..10_000_000 {
-            s.add(0.1);
-            plain += 0.1;
-        }
-        assert!(
-            (plain - 1e6).abs() > 1e-6,
-            "the case must defeat plain addition"
-        );
-        assert_eq!(s.value(), 1e6);
     }
 
     #[test]

@@ -6,8 +6,8 @@
 //! one is the same as typing those flags, and anything given after it wins.
 //! `EXPERIMENTS.md` documents each edit point by point.
 
-use crate::config::{Config, ConfigError};
 use crate::game::named::named_enum;
+use crate::param::ParamError;
 
 named_enum! {
     /// A named reading of the paper.
@@ -67,44 +67,28 @@ impl Preset {
     /// The preset named `name`.
     ///
     /// # Errors
-    /// A [`ConfigError`] for field `preset` listing the names.
-    pub fn from_name(name: &str) -> Result<Preset, ConfigError> {
+    /// A [`ParamError`] for field `preset` listing the names.
+    pub fn from_name(name: &str) -> Result<Preset, ParamError> {
         Preset::parse(name).ok_or_else(|| {
-            ConfigError::new(
+            ParamError::new(
                 "preset",
                 name.to_string(),
                 format!("one of {}", Preset::NAMES.join(", ")),
             )
         })
     }
-
-    /// The preset whose every value `cfg` has, if any.
-    pub fn matching(cfg: &Config) -> Option<Preset> {
-        Preset::ALL.iter().copied().find(|p| {
-            p.edits()
-                .iter()
-                .all(|(key, value)| cfg.get(key).is_ok_and(|v| v == *value))
-        })
-    }
-
-    /// Sets this preset's values in `cfg`; other fields are kept.
-    pub fn apply(self, cfg: &mut Config) {
-        for (key, value) in self.edits() {
-            cfg.set(key, value)
-                .unwrap_or_else(|e| panic!("preset {self} sets {key}={value}: {e}"));
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config::Config;
 
     #[test]
     fn every_preset_applies_and_validates() {
         for &p in Preset::ALL {
             let mut cfg = Config::default();
-            p.apply(&mut cfg);
+            cfg.apply_preset(p);
             cfg.validate().unwrap();
             for (key, value) in p.edits() {
                 assert_eq!(&cfg.get(key).unwrap(), value, "{p}: {key}");
@@ -117,12 +101,22 @@ mod tests {
         // Wherever it appears, a preset applies first and the rest override it.
         let (cfg, errors) = crate::config::from_params([("c", "3"), ("preset", "paper-code")]);
         assert!(errors.is_empty(), "{errors:?}");
-        assert_eq!((cfg.c, cfg.variant.name()), (3.0, "code"));
-        assert_eq!(Preset::matching(&cfg), None, "c = 3 is not the preset's");
+        assert_eq!(
+            (
+                cfg.settings.float(&crate::searchers::mcts::search::C),
+                cfg.settings
+                    .choice::<crate::searchers::mcts::variant::Variant>(
+                        &crate::searchers::mcts::search::VARIANT
+                    )
+                    .name()
+            ),
+            (3.0, "code")
+        );
+        assert_eq!(cfg.preset(), None, "c = 3 is not the preset's");
         let mut cfg = Config::default();
-        assert_eq!(Preset::matching(&cfg), None);
+        assert_eq!(cfg.preset(), None);
         cfg.set("preset", "paper-text").unwrap();
-        assert_eq!(Preset::matching(&cfg), Some(Preset::PaperText));
+        assert_eq!(cfg.preset(), Some(Preset::PaperText));
         let e = cfg.set("preset", "none").unwrap_err();
         assert_eq!((e.field, e.value.as_str()), ("preset", "none"));
     }

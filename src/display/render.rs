@@ -138,23 +138,23 @@ pub struct Extent {
 }
 
 /// Values that can be drawn: masses (f64), counts (u32) and flags (u8).
-pub trait Value: Copy {
+pub trait Drawable: Copy {
     /// The value as a float.
     fn to_f64(self) -> f64;
 }
-impl Value for f64 {
+impl Drawable for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
     }
 }
-impl Value for u32 {
+impl Drawable for u32 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
     }
 }
-impl Value for u8 {
+impl Drawable for u8 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
@@ -162,7 +162,7 @@ impl Value for u8 {
 }
 
 /// Minimum, maximum, sum and count of nonzero values (NaN and negatives count as 0).
-pub fn summarize<T: Value>(values: &[T]) -> Extent {
+pub fn summarize<T: Drawable>(values: &[T]) -> Extent {
     let mut s = Extent {
         min: f64::INFINITY,
         min_nonzero: f64::INFINITY,
@@ -231,7 +231,7 @@ impl Colorizer {
     ///
     /// # Panics
     /// If `out` does not hold `4 * values.len()` bytes.
-    pub fn colorize_kind<T: Value>(
+    pub fn colorize_kind<T: Drawable>(
         &self,
         values: &[T],
         out: &mut [u8],
@@ -254,7 +254,7 @@ impl Colorizer {
     ///
     /// # Panics
     /// If `out` has the wrong length.
-    pub fn colorize<T: Value>(
+    pub fn colorize<T: Drawable>(
         &self,
         values: &[T],
         out: &mut [u8],
@@ -264,7 +264,7 @@ impl Colorizer {
         self.colorize_summarized(values, out, summarize(values), scale, alpha)
     }
 
-    fn colorize_summarized<T: Value>(
+    fn colorize_summarized<T: Drawable>(
         &self,
         values: &[T],
         out: &mut [u8],
@@ -331,7 +331,7 @@ impl Colorizer {
 /// one u32 store a pixel (byte by byte only if `out` is not 4-aligned): the
 /// recolouring of big layers is most of what a frame costs.
 #[inline(always)]
-fn fill<T: Value>(
+fn fill<T: Drawable>(
     values: &[T],
     out: &mut [u8],
     px: &[u32; 256],

@@ -9,67 +9,21 @@
 //! sent again. Keys come from generation counters the episode keeps.
 
 use crate::display::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
-use crate::game::named::named_enum;
-use crate::run::batch::Fnv;
+use crate::game::fnv::Fnv;
+use crate::game::layer::Layer;
 use crate::run::episode::{Episode, Status};
-use crate::searchers::mcts::{self, DecisionView, FinalRule};
-use crate::searchers::{MoveScores, Planning};
+use crate::searchers::decision::{DecisionView, MoveScores, Planning};
+use crate::searchers::mcts::search::final_rule;
+use crate::searchers::mcts::uct::{leading, FinalRule};
 use std::sync::atomic::{AtomicU64, Ordering};
 
-named_enum! {
-    /// A heat layer of the lattice.
-    pub enum Layer {
-        /// The true target's prior mass.
-        Prior = "prior",
-        /// The planning prior's mass (a delta on the target when it is known).
-        Plan = "plan",
-        /// The planning prior with searched cells removed, renormalised.
-        Posterior = "posterior",
-        /// MCTS visit counts (a tree projected onto cells; NSARW's own counts).
-        Visits = "visits",
-        /// Cells within r_v of any position occupied so far.
-        Searched = "searched",
-        /// A NSARW walker's own visit counts.
-        Walker = "walker",
-    }
-}
-
-impl Layer {
-    /// A name for people.
-    pub fn label(self) -> &'static str {
-        match self {
-            Layer::Prior => "Prior mass",
-            Layer::Plan => "Planning prior",
-            Layer::Posterior => "Posterior mass",
-            Layer::Visits => "MCTS visits",
-            Layer::Searched => "Searched",
-            Layer::Walker => "NSARW counts",
-        }
-    }
-
-    /// True for counts (a log scale's floor is 1), false for masses and flags.
-    pub fn counts(self) -> bool {
-        matches!(self, Layer::Visits | Layer::Walker)
-    }
-
-    /// True for a yes/no layer, drawn on a linear scale whatever is asked.
-    pub fn binary(self) -> bool {
-        self == Layer::Searched
-    }
-
-    /// True when the layer changes as the search runs.
-    pub fn dynamic(self) -> bool {
-        !matches!(self, Layer::Prior | Layer::Plan)
-    }
-
-    /// The palette and alpha ramp a display uses unless told otherwise.
-    pub fn style(self) -> (Palette, [u8; 2]) {
-        match self {
-            Layer::Prior | Layer::Plan => (Palette::Viridis, [255, 255]),
-            Layer::Posterior => (Palette::Cividis, [60, 255]),
-            Layer::Searched => (Palette::Ember, [0, 70]),
-            Layer::Visits | Layer::Walker => (Palette::Ember, [0, 235]),
-        }
+/// The palette and alpha ramp a display uses for `layer` unless told otherwise.
+pub fn style(layer: Layer) -> (Palette, [u8; 2]) {
+    match layer {
+        Layer::Prior | Layer::Plan => (Palette::Viridis, [255, 255]),
+        Layer::Posterior => (Palette::Cividis, [60, 255]),
+        Layer::Searched => (Palette::Ember, [0, 70]),
+        Layer::Visits | Layer::Walker => (Palette::Ember, [0, 235]),
     }
 }
 
@@ -102,7 +56,7 @@ pub fn layers() -> Vec<LayerInfo> {
     ]
     .into_iter()
     .map(|l| {
-        let (palette, alpha) = l.style();
+        let (palette, alpha) = style(l);
         LayerInfo {
             name: l.name(),
             label: l.label(),
@@ -316,45 +270,7 @@ impl FrameBuilder {
     /// The frame of `ep` that `req` asks for; `now_ms` is the clock the
     /// recolouring period of live layers reads.
     pub fn frame<'a>(&'a mut self, ep: &'a Episode, req: &FrameRequest, now_ms: f64) -> Frame<'a> {
-        let cells = ep.torus().cells();
-        let period = recolour_period_ms(cells, req.live);
-        let mut plan: Vec<(Layer, u64, bool)> = Vec::with_capacity(req.layers.len());
-        for lr in &req.layers {
-            let i = lr.layer as usize;
-            let generation = ep.generation(lr.layer);
-            let m = &mut self.memo[i];
-            let effective = if period > 0.0 && lr.layer.dynamic() {
-                let tick = (now_ms / period).max(0.0) as u64;
-                if tick != m.tick {
-                    *m = Memo { tick, generation };
-                }
-                m.generation
-            } else {
-                *m = Memo {
-                    tick: u64::MAX,
-                    generation,
-                };
-                generation
-            };
-            let style = [
-                lr.palette as u64,
-                lr.scale as u64,
-                lr.alpha[0] as u64,
-                lr.alpha[1] as u64,
-            ];
-            let mut h = Fnv::default();
-            for w in [
-                self.id, i as u64, style[0], style[1], style[2], style[3], effective,
-            ] {
-                h.word(w);
-            }
-            let key = h.finish() & KEY_MASK;
-            let same = lr.have == Some(key);
-            if !same && !self.render(ep, lr) {
-                continue; // this searcher has no such layer
-            }
-            plan.push((lr.layer, key, same));
-        }
+        let plan = self.plan_layers(ep, req, now_ms);
         let path = ep.path();
         let from = if (req.path_from as usize) <= path.len() {
             req.path_from
@@ -387,14 +303,14 @@ impl FrameBuilder {
             None
         };
 
-        let rule = mcts::final_rule(ep.config());
+        let rule = final_rule(&ep.config().settings);
         let decision = ep.decision().map(|view| Decision {
             view,
             rule,
             leading: if view.children.iter().all(|c| c.selected == 0) {
                 [false; 4]
             } else {
-                mcts::leading(&view, rule)
+                leading(&view, rule)
             },
         });
         let result = ep.result();
@@ -441,6 +357,56 @@ impl FrameBuilder {
             scores: ep.scores(),
             planning: ep.planning(),
         }
+    }
+
+    /// Each requested layer with its key and whether the display already
+    /// holds it, the ones it does not hold coloured (a layer this searcher
+    /// lacks is left out).
+    fn plan_layers(
+        &mut self,
+        ep: &Episode,
+        req: &FrameRequest,
+        now_ms: f64,
+    ) -> Vec<(Layer, u64, bool)> {
+        let period = recolour_period_ms(ep.torus().cells(), req.live);
+        let mut plan: Vec<(Layer, u64, bool)> = Vec::with_capacity(req.layers.len());
+        for lr in &req.layers {
+            let i = lr.layer as usize;
+            let generation = ep.generation(lr.layer);
+            let m = &mut self.memo[i];
+            let effective = if period > 0.0 && lr.layer.dynamic() {
+                let tick = (now_ms / period).max(0.0) as u64;
+                if tick != m.tick {
+                    *m = Memo { tick, generation };
+                }
+                m.generation
+            } else {
+                *m = Memo {
+                    tick: u64::MAX,
+                    generation,
+                };
+                generation
+            };
+            let style = [
+                lr.palette as u64,
+                lr.scale as u64,
+                lr.alpha[0] as u64,
+                lr.alpha[1] as u64,
+            ];
+            let mut h = Fnv::default();
+            for w in [
+                self.id, i as u64, style[0], style[1], style[2], style[3], effective,
+            ] {
+                h.word(w);
+            }
+            let key = h.finish() & KEY_MASK;
+            let same = lr.have == Some(key);
+            if !same && !self.render(ep, lr) {
+                continue; // this searcher has no such layer
+            }
+            plan.push((lr.layer, key, same));
+        }
+        plan
     }
 
     /// Colours `lr` into its buffer; false when the searcher lacks the layer.
@@ -504,10 +470,9 @@ mod tests {
     fn small() -> Config {
         Config {
             n: 12,
-            loops: 10,
-            keep_traces: 2,
             ..Config::default()
         }
+        .with(&[("loops", "10"), ("keep_traces", "2")])
     }
 
     #[test]
@@ -554,9 +519,9 @@ mod tests {
     fn live_big_layers_recolour_on_a_clock() {
         let cfg = Config {
             n: 200,
-            loops: 5,
             ..Config::default()
-        };
+        }
+        .with(&[("loops", "5")]);
         let mut ep = Episode::new(&cfg).unwrap();
         let mut fb = FrameBuilder::new(40_000);
         let key = |fb: &mut FrameBuilder, ep: &Episode, t: f64, live: bool| {
@@ -677,9 +642,13 @@ mod tests {
             ep.step_loops(7);
             let view = ep.decision().unwrap();
             for &rule in FinalRule::ALL {
-                let lead = mcts::leading(&view, rule);
+                let lead = leading(&view, rule);
                 for s in 0..16 {
-                    let m = mcts::final_move(&view, rule, &mut rng::stream(s, 0));
+                    let m = crate::searchers::mcts::uct::final_move(
+                        &view,
+                        rule,
+                        &mut rng::stream(s, 0),
+                    );
                     assert!(lead[m as usize], "{rule}: {m:?} not among {lead:?}");
                 }
             }

@@ -154,7 +154,9 @@ pub fn every_searcher() -> Vec<SeriesDef> {
     v.extend(
         REGISTRY
             .iter()
-            .filter(|s| s.name != crate::searchers::mcts::INFO.name && !s.name.starts_with("test-"))
+            .filter(|s| {
+                s.name != crate::searchers::mcts::search::INFO.name && !s.name.starts_with("test-")
+            })
             .filter_map(|s| searcher(s.name)),
     );
     v

@@ -32,15 +32,18 @@ mod chart;
 pub use chart::svg;
 
 pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
-pub use output::{CSV_HEADER, FORMAT, FORMAT_VERSION};
+pub use output::CSV_HEADER;
 pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
 pub use read::{merge, read, MergeError};
 pub use result::{ResultError, ResultSet};
+pub use result::{FORMAT, FORMAT_VERSION};
 pub use run::{
     check_range, run_unit, run_units, run_units_clocked, RangeError, Row, Shard, MAX_SHARDS,
     ROW_FIELDS,
 };
-pub use spec::{canonical_param, SeriesSpec, Spec, SpecError, Sweep, DEFAULT_PRESET, SPEC_FIELDS};
+pub use spec::{
+    canonical_param, SeriesSpec, Spec, SpecError, SweepSpec, DEFAULT_PRESET, SPEC_FIELDS,
+};
 pub use summary::{expected_optimal, PointStats};
 
 /// An experiment as the CLI's `--list` and the page's picker show it.

@@ -5,15 +5,10 @@
 //! Non-finite numbers (a mean without rows, an unknown bound) are `null`.
 
 use super::plan::{Header, PointView};
-use super::result::ResultSet;
+use super::result::{ResultSet, FORMAT, FORMAT_VERSION};
 use super::run::{Row, ROW_FIELDS};
 use super::spec::Spec;
 use super::summary::PointStats;
-
-/// The `format` field of a result file.
-pub const FORMAT: &str = "torus-search-experiment";
-/// The `format_version` this build writes and reads.
-pub const FORMAT_VERSION: u64 = 1;
 
 impl serde::Serialize for Row {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {

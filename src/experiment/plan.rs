@@ -11,6 +11,8 @@
 use super::defs::{self, Chart, Kind, Metric, SeriesDef, COMMON_DEFAULTS};
 use super::spec::{Spec, SpecError};
 use crate::config::{self, Config};
+use crate::param::ParamKind;
+use crate::searchers::mcts::search::MS;
 
 /// The x axis: the swept parameter and its values.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -113,7 +115,7 @@ fn y_label(metric: Metric) -> &'static str {
 fn numeric_key(key: &str) -> bool {
     matches!(
         config::param(key).map(|p| p.kind),
-        Some(config::Kind::Int { .. } | config::Kind::Float { .. } | config::Kind::OptFloat { .. })
+        Some(ParamKind::Int { .. } | ParamKind::Float { .. } | ParamKind::OptFloat { .. })
     )
 }
 
@@ -124,6 +126,226 @@ fn is_numeric(key: Option<&str>, values: &[String]) -> bool {
             .all(|v| v.parse::<f64>().is_ok_and(f64::is_finite))
 }
 
+/// The swept parameter of a plan: its key, values, label and whether the
+/// definition asks for a log axis (`None`: decide from the values).
+struct XSpec {
+    key: Option<String>,
+    values: Vec<String>,
+    label: String,
+    log: Option<bool>,
+}
+
+impl XSpec {
+    fn of(spec: &Spec) -> XSpec {
+        match (&spec.definition().x, &spec.sweep) {
+            (Some(x), _) => XSpec {
+                key: Some(x.key.to_string()),
+                values: x.values.iter().map(|v| v.to_string()).collect(),
+                label: x.label.to_string(),
+                log: Some(x.log),
+            },
+            (None, Some(s)) => XSpec {
+                key: Some(s.key.clone()),
+                values: s.values.clone(),
+                label: s.key.clone(),
+                log: None,
+            },
+            (None, None) => XSpec {
+                key: None,
+                values: vec![String::new()],
+                label: String::new(),
+                log: None,
+            },
+        }
+    }
+}
+
+/// The configuration every point starts from: the preset, the common and
+/// the definition's defaults, the spec's params and its seed.
+fn base_config(spec: &Spec) -> Result<Config, SpecError> {
+    let def = spec.definition();
+    let mut base = Config::default();
+    if let Some(p) = spec.preset {
+        base.apply_preset(p);
+    }
+    for (k, v) in COMMON_DEFAULTS.iter().chain(def.defaults) {
+        base.set(k, v)
+            .unwrap_or_else(|e| panic!("experiment {} default {k}={v}: {e}", def.name));
+    }
+    for (k, v) in &spec.params {
+        base.set(k, v).map_err(|error| SpecError::Param {
+            place: "params".into(),
+            error,
+        })?;
+    }
+    base.seed = spec.seed;
+    Ok(base)
+}
+
+/// The series: the spec's, a custom experiment's one base series, or the
+/// definition's.
+fn series_of(spec: &Spec, x: &XSpec, base: &Config) -> Vec<SeriesDef> {
+    let def = spec.definition();
+    match &spec.series {
+        Some(list) => list
+            .iter()
+            .map(|s| SeriesDef {
+                label: s.label.clone(),
+                params: s
+                    .params
+                    .iter()
+                    .map(|(k, v)| (config::param(k).expect("a canonical key").key, v.clone()))
+                    .collect(),
+            })
+            .collect(),
+        None if def.is_custom() => vec![SeriesDef {
+            label: if x.key.is_some() {
+                "base configuration".into()
+            } else {
+                base.label()
+            },
+            params: vec![],
+        }],
+        None => (def.series)(),
+    }
+}
+
+/// Refuses overrides that could never take effect, rather than ignoring them.
+fn check_overrides(spec: &Spec, x: &XSpec, series: &[SeriesDef]) -> Result<(), SpecError> {
+    let def = spec.definition();
+    let name = def.name;
+    for key in spec.params.keys() {
+        if x.key.as_deref() == Some(key.as_str()) {
+            return Err(SpecError::Conflict(format!(
+                "{key} is the x axis of {name} (values {}); it cannot be set in params",
+                x.values.join(", ")
+            )));
+        }
+        if !series.is_empty()
+            && series
+                .iter()
+                .all(|s| s.params.iter().any(|(k, _)| k == key))
+        {
+            return Err(SpecError::Conflict(format!(
+                "{key} is set by every series of {name}; it cannot be set in params"
+            )));
+        }
+        if def.kind == Kind::Targets && !PRIOR_KEYS.contains(&key.as_str()) {
+            return Err(SpecError::Conflict(format!(
+                "{name} only samples targets, so {key} does not affect it (the keys that do: {})",
+                PRIOR_KEYS.join(", ")
+            )));
+        }
+    }
+    if let (Some(key), Some(list)) = (&x.key, &spec.series) {
+        if let Some(s) = list.iter().find(|s| s.params.contains_key(key)) {
+            return Err(SpecError::Conflict(format!(
+                "{key} is the swept parameter; series {:?} cannot set it",
+                s.label
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Every point, series-major: the base with the series' params and the x
+/// value, validated.
+fn points_of(base: &Config, series: &[SeriesDef], x: &XSpec) -> Result<Vec<Point>, SpecError> {
+    let mut points = Vec::with_capacity(series.len() * x.values.len());
+    for (si, s) in series.iter().enumerate() {
+        for (xi, xv) in x.values.iter().enumerate() {
+            let mut cfg = base.clone();
+            for (k, v) in &s.params {
+                cfg.set(k, v).map_err(|error| SpecError::Param {
+                    place: format!("series {:?}", s.label),
+                    error,
+                })?;
+            }
+            if let Some(k) = &x.key {
+                cfg.set(k, xv).map_err(|error| SpecError::Param {
+                    place: "sweep".into(),
+                    error,
+                })?;
+            }
+            cfg.validate().map_err(|error| SpecError::Point {
+                point: match &x.key {
+                    Some(k) => format!("{:?}, {k}={xv}", s.label),
+                    None => format!("{:?}", s.label),
+                },
+                error,
+            })?;
+            points.push(Point {
+                index: points.len(),
+                series: si,
+                x: xi,
+                config: cfg,
+            });
+        }
+    }
+    Ok(points)
+}
+
+/// The header of a plan: the definition's title and axes, the chart, the
+/// series' labels and the references.
+fn header_of(spec: &Spec, x: XSpec, series: &[SeriesDef], points: &[Point]) -> Header {
+    let def = spec.definition();
+    let numeric = is_numeric(x.key.as_deref(), &x.values);
+    let log = match x.log {
+        Some(log) => log,
+        None => {
+            let xs: Vec<f64> = x.values.iter().filter_map(|v| v.parse().ok()).collect();
+            let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = xs.iter().copied().fold(0.0, f64::max);
+            numeric && xs.len() > 2 && lo > 0.0 && hi / lo >= 20.0
+        }
+    };
+    let chart = if !def.is_custom() {
+        def.chart
+    } else if x.key.is_none() {
+        Chart::Box
+    } else if numeric {
+        Chart::Line
+    } else {
+        Chart::Box
+    };
+    let timed = points.iter().any(|p| {
+        p.config.settings.opt_float(&MS).is_some() && p.config.searcher.info().deliberates
+    });
+    let note = def
+        .note
+        .or((timed && def.kind == Kind::Episodes).then_some(defs::TIMING_NOTE))
+        .map(str::to_string);
+    Header {
+        name: def.name.to_string(),
+        title: def.title.to_string(),
+        kind: def.kind,
+        metric: def.metric,
+        chart,
+        x: Axis {
+            key: x.key,
+            label: x.label,
+            values: x.values,
+            numeric,
+            log,
+        },
+        y: YAxis {
+            label: y_label(def.metric).to_string(),
+            log: def.y_log,
+        },
+        series: series.iter().map(|s| s.label.clone()).collect(),
+        references: def
+            .references
+            .iter()
+            .map(|r| Reference {
+                label: r.label.to_string(),
+                x: r.x.iter().map(|v| v.to_string()).collect(),
+                y: r.y.to_vec(),
+            })
+            .collect(),
+        note,
+    }
+}
+
 impl Plan {
     /// Resolves `spec` into a header and points.
     ///
@@ -131,139 +353,24 @@ impl Plan {
     /// A [`SpecError`] naming the parameter, the point or the conflict.
     pub fn new(spec: &Spec) -> Result<Plan, SpecError> {
         let def = spec.definition();
-        let name = def.name;
-        let mut base = Config::default();
-        if let Some(p) = spec.preset {
-            p.apply(&mut base);
-        }
-        for (k, v) in COMMON_DEFAULTS.iter().chain(def.defaults) {
-            base.set(k, v)
-                .unwrap_or_else(|e| panic!("experiment {name} default {k}={v}: {e}"));
-        }
-        for (k, v) in &spec.params {
-            base.set(k, v).map_err(|error| SpecError::Param {
-                place: "params".into(),
-                error,
-            })?;
-        }
-        base.seed = spec.seed;
-
-        let (x_key, x_values, x_label, def_log): (
-            Option<String>,
-            Vec<String>,
-            String,
-            Option<bool>,
-        ) = match (&def.x, &spec.sweep) {
-            (Some(x), _) => (
-                Some(x.key.to_string()),
-                x.values.iter().map(|v| v.to_string()).collect(),
-                x.label.to_string(),
-                Some(x.log),
-            ),
-            (None, Some(s)) => (Some(s.key.clone()), s.values.clone(), s.key.clone(), None),
-            (None, None) => (None, vec![String::new()], String::new(), None),
-        };
-        let series: Vec<SeriesDef> = match &spec.series {
-            Some(list) => list
-                .iter()
-                .map(|s| SeriesDef {
-                    label: s.label.clone(),
-                    params: s
-                        .params
-                        .iter()
-                        .map(|(k, v)| (config::param(k).expect("a canonical key").key, v.clone()))
-                        .collect(),
-                })
-                .collect(),
-            None if def.is_custom() => vec![SeriesDef {
-                label: if x_key.is_some() {
-                    "base configuration".into()
-                } else {
-                    base.label()
-                },
-                params: vec![],
-            }],
-            None => (def.series)(),
-        };
-
-        // Overrides that could never take effect are refused, not ignored.
-        for key in spec.params.keys() {
-            if x_key.as_deref() == Some(key.as_str()) {
-                return Err(SpecError::Conflict(format!(
-                    "{key} is the x axis of {name} (values {}); it cannot be set in params",
-                    x_values.join(", ")
-                )));
-            }
-            if !series.is_empty()
-                && series
-                    .iter()
-                    .all(|s| s.params.iter().any(|(k, _)| k == key))
-            {
-                return Err(SpecError::Conflict(format!(
-                    "{key} is set by every series of {name}; it cannot be set in params"
-                )));
-            }
-            if def.kind == Kind::Targets && !PRIOR_KEYS.contains(&key.as_str()) {
-                return Err(SpecError::Conflict(format!(
-                    "{name} only samples targets, so {key} does not affect it (the keys that do: {})",
-                    PRIOR_KEYS.join(", ")
-                )));
-            }
-        }
-        if let (Some(key), Some(list)) = (&x_key, &spec.series) {
-            if let Some(s) = list.iter().find(|s| s.params.contains_key(key)) {
-                return Err(SpecError::Conflict(format!(
-                    "{key} is the swept parameter; series {:?} cannot set it",
-                    s.label
-                )));
-            }
-        }
-
-        let mut points = Vec::with_capacity(series.len() * x_values.len());
-        for (si, s) in series.iter().enumerate() {
-            for (xi, xv) in x_values.iter().enumerate() {
-                let mut cfg = base.clone();
-                for (k, v) in &s.params {
-                    cfg.set(k, v).map_err(|error| SpecError::Param {
-                        place: format!("series {:?}", s.label),
-                        error,
-                    })?;
-                }
-                if let Some(k) = &x_key {
-                    cfg.set(k, xv).map_err(|error| SpecError::Param {
-                        place: "sweep".into(),
-                        error,
-                    })?;
-                }
-                cfg.validate().map_err(|error| SpecError::Point {
-                    point: match &x_key {
-                        Some(k) => format!("{:?}, {k}={xv}", s.label),
-                        None => format!("{:?}", s.label),
-                    },
-                    error,
-                })?;
-                points.push(Point {
-                    index: points.len(),
-                    series: si,
-                    x: xi,
-                    config: cfg,
-                });
-            }
-        }
-
+        let base = base_config(spec)?;
+        let x = XSpec::of(spec);
+        let series = series_of(spec, &x, &base);
+        check_overrides(spec, &x, &series)?;
+        let points = points_of(&base, &series, &x)?;
         if def.kind == Kind::Episodes {
-            let given = spec.params.keys().chain(x_key.iter());
+            let given = spec.params.keys().chain(x.key.iter());
             for key in given {
-                let p = config::param(key).expect("a canonical key");
+                let p = config::schema::entry(key).expect("a canonical key");
                 if !points.iter().any(|pt| p.applies_to(&pt.config)) {
                     return Err(SpecError::Conflict(format!(
-                        "{key} does not apply to any point of {name}: {}",
+                        "{key} does not apply to any point of {}: {}",
+                        def.name,
                         p.not_applying(&points[0].config)
                     )));
                 }
             }
         }
-
         let total = (points.len() as u64).checked_mul(spec.trials);
         if total.is_none_or(|t| t > MAX_UNITS) {
             return Err(SpecError::Conflict(format!(
@@ -272,62 +379,7 @@ impl Plan {
                 spec.trials
             )));
         }
-
-        let numeric = is_numeric(x_key.as_deref(), &x_values);
-        let log = match def_log {
-            Some(log) => log,
-            None => {
-                let xs: Vec<f64> = x_values.iter().filter_map(|v| v.parse().ok()).collect();
-                let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
-                let hi = xs.iter().copied().fold(0.0, f64::max);
-                numeric && xs.len() > 2 && lo > 0.0 && hi / lo >= 20.0
-            }
-        };
-        let chart = if !def.is_custom() {
-            def.chart
-        } else if x_key.is_none() {
-            Chart::Box
-        } else if numeric {
-            Chart::Line
-        } else {
-            Chart::Box
-        };
-        let timed = points
-            .iter()
-            .any(|p| p.config.ms.is_some() && p.config.searcher.info().deliberates);
-        let note = def
-            .note
-            .or((timed && def.kind == Kind::Episodes).then_some(defs::TIMING_NOTE))
-            .map(str::to_string);
-        let header = Header {
-            name: name.to_string(),
-            title: def.title.to_string(),
-            kind: def.kind,
-            metric: def.metric,
-            chart,
-            x: Axis {
-                key: x_key,
-                label: x_label,
-                values: x_values,
-                numeric,
-                log,
-            },
-            y: YAxis {
-                label: y_label(def.metric).to_string(),
-                log: def.y_log,
-            },
-            series: series.iter().map(|s| s.label.clone()).collect(),
-            references: def
-                .references
-                .iter()
-                .map(|r| Reference {
-                    label: r.label.to_string(),
-                    x: r.x.iter().map(|v| v.to_string()).collect(),
-                    y: r.y.to_vec(),
-                })
-                .collect(),
-            note,
-        };
+        let header = header_of(spec, x, &series, &points);
         Ok(Plan {
             spec: spec.clone(),
             header,
@@ -420,10 +472,32 @@ mod tests {
             (c.n, c.start, c.target, c.rv),
             (20, [11, 11], Some([3, 3]), 0.0)
         );
-        assert_eq!(c.c, 3.0, "spec params override the preset");
-        assert_eq!(c.loops, 100, "the x value sets loops");
-        assert_eq!(p.points[1].config.loops, 200);
-        assert_eq!(c.final_rule.name(), "uct", "the preset applies");
+        assert_eq!(
+            c.settings.float(&crate::searchers::mcts::search::C),
+            3.0,
+            "spec params override the preset"
+        );
+        assert_eq!(
+            c.settings.u32(&crate::searchers::mcts::search::LOOPS),
+            100,
+            "the x value sets loops"
+        );
+        assert_eq!(
+            p.points[1]
+                .config
+                .settings
+                .u32(&crate::searchers::mcts::search::LOOPS),
+            200
+        );
+        assert_eq!(
+            c.settings
+                .choice::<crate::searchers::mcts::uct::FinalRule>(
+                    &crate::searchers::mcts::search::FINAL
+                )
+                .name(),
+            "uct",
+            "the preset applies"
+        );
         let p = plan(r#"{"name":"sigma-sweep","seed":"9"}"#).unwrap();
         assert_eq!(p.points.len(), 10 * 11);
         assert_eq!(p.header.series[0], "MCTS, RW rollouts");
@@ -432,7 +506,16 @@ mod tests {
             (last.searcher.name(), last.sigma, last.seed),
             ("spiral", 10.0, 9)
         );
-        assert_eq!(p.points[11].config.rollout.name(), "levy");
+        assert_eq!(
+            p.points[11]
+                .config
+                .settings
+                .choice::<crate::searchers::walks::policy::PolicyKind>(
+                    &crate::searchers::mcts::search::ROLLOUT
+                )
+                .name(),
+            "levy"
+        );
     }
 
     #[test]
@@ -455,14 +538,35 @@ mod tests {
         let p = plan(r#"{"name":"custom","sweep":{"key":"loops","values":["10","100","1000"]},"series":[{"label":"a","params":{"rollout":"levy"}},{"label":"b","params":{"searcher":"mcts"}}]}"#).unwrap();
         assert_eq!(p.header.chart, Chart::Line);
         assert!(p.header.x.numeric && p.header.x.log);
-        assert_eq!(p.points[0].config.rollout.name(), "levy");
-        assert_eq!(p.points[5].config.loops, 1000);
+        assert_eq!(
+            p.points[0]
+                .config
+                .settings
+                .choice::<crate::searchers::walks::policy::PolicyKind>(
+                    &crate::searchers::mcts::search::ROLLOUT
+                )
+                .name(),
+            "levy"
+        );
+        assert_eq!(
+            p.points[5]
+                .config
+                .settings
+                .u32(&crate::searchers::mcts::search::LOOPS),
+            1000
+        );
     }
 
     #[test]
     fn custom_sweeps_every_schema_parameter() {
         let paint = crate::game::prior::encode_paint(&[1; 36]);
-        for p in config::PARAMS.iter().filter(|p| p.key != "seed") {
+        for e in config::params().iter().filter(|e| e.param().key != "seed") {
+            let p = e.param();
+            // The searcher that declares it (`mcts` for the game's own).
+            let owner = match e.group() {
+                "game" => r#""searcher":"mcts""#.to_string(),
+                g => format!(r#""searcher":"{g}""#),
+            };
             // Params that make the swept key apply, and a value to sweep.
             let (params, value): (&str, String) = match p.key {
                 "mu" => (r#""rollout":"levy""#, "1.5".into()),
@@ -483,7 +587,7 @@ mod tests {
                 "beam_width" => (r#""searcher":"beam""#, "7".into()),
                 "beam_depth" => (r#""searcher":"beam""#, "9".into()),
                 "sweep_pattern" => (r#""searcher":"sweep""#, "helix".into()),
-                _ => (r#""searcher":"mcts""#, p.default.text()),
+                _ => (owner.as_str(), p.default.text()),
             };
             let n = if p.key == "n" { "" } else { r#""n":"6","# };
             let json = format!(

@@ -5,9 +5,9 @@
 //! statistics written in the file must agree with what this build derives
 //! from them.
 
-use super::output::{FORMAT, FORMAT_VERSION};
 use super::plan::Plan;
 use super::result::{ResultError, ResultSet};
+use super::result::{FORMAT, FORMAT_VERSION};
 use super::run::{Row, ROW_FIELDS};
 use super::spec::Spec;
 use serde_json::Value;

@@ -9,6 +9,11 @@ use super::summary::{self, PointStats};
 use crate::game::lattice::Torus;
 use std::fmt;
 
+/// The `format` field of a result file.
+pub const FORMAT: &str = "torus-search-experiment";
+/// The `format_version` this build writes and reads.
+pub const FORMAT_VERSION: u64 = 1;
+
 /// A result (or a result file) that cannot be used, with what is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ResultError {
@@ -52,7 +57,7 @@ impl fmt::Display for ResultError {
             ResultError::FormatVersion(v) => write!(
                 f,
                 "format_version {v} is not supported (this build reads {})",
-                super::output::FORMAT_VERSION
+                FORMAT_VERSION
             ),
             ResultError::Version(v) => write!(
                 f,

@@ -8,7 +8,8 @@
 
 use super::defs::{self, Definition};
 use crate::config::preset::Preset;
-use crate::config::{self, ConfigError, TRIALS};
+use crate::config::{self, TRIALS};
+use crate::param::ParamError;
 
 /// The preset of a spec that names none: the authors' code, which is what
 /// produced the paper's figures (`EXPERIMENTS.md` compares it with their
@@ -51,14 +52,14 @@ pub enum SpecError {
         /// Where it was given: "params", "sweep", `series "A"`.
         place: String,
         /// The parameter's own error.
-        error: ConfigError,
+        error: ParamError,
     },
     /// A point whose configuration does not validate.
     Point {
         /// Which point: its series and x value.
         point: String,
         /// The first invalid field.
-        error: ConfigError,
+        error: ParamError,
     },
     /// A request the experiment cannot honour (a sweep on a named
     /// experiment, an override of the swept parameter, ...).
@@ -95,7 +96,7 @@ impl std::error::Error for SpecError {}
 
 /// A sweep of one parameter over values (custom experiments).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Sweep {
+pub struct SweepSpec {
     /// The parameter key.
     pub key: String,
     /// Its values, in canonical text, in the order given.
@@ -125,7 +126,7 @@ pub struct Spec {
     /// Overrides applied after the preset and the experiment's defaults.
     pub params: BTreeMap<String, String>,
     /// The swept parameter (custom only).
-    pub sweep: Option<Sweep>,
+    pub sweep: Option<SweepSpec>,
     /// The series (custom only).
     pub series: Option<Vec<SeriesSpec>>,
 }
@@ -139,7 +140,7 @@ impl serde::Serialize for Spec {
             seed: String,
             preset: Option<&'static str>,
             params: &'a BTreeMap<String, String>,
-            sweep: &'a Option<Sweep>,
+            sweep: &'a Option<SweepSpec>,
             series: &'a Option<Vec<SeriesSpec>>,
         }
         Out {
@@ -250,7 +251,7 @@ fn only_fields(
     }
 }
 
-fn sweep_of(v: Option<&Value>) -> Result<Option<Sweep>, SpecError> {
+fn sweep_of(v: Option<&Value>) -> Result<Option<SweepSpec>, SpecError> {
     let map = match v {
         None | Some(Value::Null) => return Ok(None),
         Some(Value::Object(map)) => map,
@@ -297,7 +298,7 @@ fn sweep_of(v: Option<&Value>) -> Result<Option<Sweep>, SpecError> {
         canonical_key = k;
         out.push(text);
     }
-    Ok(Some(Sweep {
+    Ok(Some(SweepSpec {
         key: canonical_key,
         values: out,
     }))

@@ -30,7 +30,7 @@ pub struct BeliefState {
     /// Planning mass not yet searched, summed with compensation: a running
     /// difference from 1 keeps rounding dust of about 10⁻¹⁶, which near
     /// the end of a search outweighs the mass truly left.
-    remaining: crate::analysis::stats::Sum,
+    remaining: crate::game::sum::Sum,
     /// Unsearched cells with planning mass: at 0 no mass is left, exactly.
     cells_left: u32,
     /// Counts changes to `searched`, so a drawing of it can be reused.
@@ -66,7 +66,7 @@ impl BeliefState {
     /// for planning when the target is known.
     pub fn new(kind: Belief, prior: TargetPrior, plan: Option<TargetPrior>) -> BeliefState {
         let cells = prior.mass().len();
-        let mut remaining = crate::analysis::stats::Sum::default();
+        let mut remaining = crate::game::sum::Sum::default();
         let mut cells_left = 0;
         for &m in plan.as_ref().unwrap_or(&prior).mass() {
             remaining.add(m);

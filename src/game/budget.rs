@@ -1,7 +1,7 @@
 //! The budget of one decision: a number of loops, or a time in milliseconds
 //! on a clock the host provides.
 
-use crate::run::episode::Counters;
+use crate::game::counters::Counters;
 
 /// The default clock: monotonic milliseconds natively. In wasm the facade
 /// sets one that reads `performance.now()`.

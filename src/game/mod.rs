@@ -3,9 +3,13 @@
 
 pub mod belief;
 pub mod budget;
+pub mod counters;
 pub mod coverage;
+pub mod fnv;
 pub mod lattice;
-pub(crate) mod named;
+pub mod layer;
+pub mod named;
 pub mod prior;
 pub mod rng;
+pub mod sum;
 pub mod traces;

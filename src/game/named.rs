@@ -4,8 +4,18 @@
 //! `Display` and serde, so the CLI, the URL, the JSON files and the page all
 //! spell a variant the same way and no surface keeps its own list.
 
+/// An enum whose variants are known by lower-case names.
+pub trait Named: Copy + 'static {
+    /// Every variant's name, in declaration order.
+    const NAMES: &'static [&'static str];
+    /// The lower-case name.
+    fn name(self) -> &'static str;
+    /// The variant with this name.
+    fn parse(s: &str) -> Option<Self>;
+}
+
 /// Defines `pub enum $T` with `ALL`, `NAMES`, `name()`, `parse()`,
-/// `Display` and serde as the name.
+/// [`Named`], `Display` and serde as the name.
 macro_rules! named_enum {
     (
         $(#[$meta:meta])*
@@ -35,6 +45,16 @@ macro_rules! named_enum {
             /// The variant with this name.
             pub fn parse(s: &str) -> Option<$T> {
                 $T::ALL.iter().copied().find(|v| v.name() == s)
+            }
+        }
+
+        impl $crate::game::named::Named for $T {
+            const NAMES: &'static [&'static str] = $T::NAMES;
+            fn name(self) -> &'static str {
+                $T::name(self)
+            }
+            fn parse(s: &str) -> Option<$T> {
+                $T::parse(s)
             }
         }
 

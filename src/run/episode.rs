@@ -1,14 +1,17 @@
 //! One trial: a target, a searcher, and the moves until detection or the step cap.
 
-use crate::config::{Config, ConfigError, Game};
-use crate::display::view::Layer;
+use crate::config::{Config, Game};
 use crate::game::belief::BeliefState;
 use crate::game::budget::Budget;
+use crate::game::counters::Counters;
 use crate::game::lattice::{Move, Sensor, Torus};
+use crate::game::layer::Layer;
 use crate::game::prior::{PriorSpec, TargetPrior};
 use crate::game::rng::{self, Rng};
 use crate::game::traces::Traces;
-use crate::searchers::mcts::DecisionView;
+use crate::param::ParamError;
+use crate::searchers::decision::DecisionView;
+use crate::searchers::mcts::search::{BELIEF, KEEP_TRACES, LOOPS, MS};
 use crate::searchers::{MoveScores, Planning, Searcher, SearcherInfo, Setup, World};
 
 /// Where an episode stands.
@@ -21,34 +24,6 @@ pub enum Status {
     Found,
     /// The step cap ended the episode first (a failure).
     Capped,
-}
-
-/// Rollout counters.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Counters {
-    /// Rollouts (MCTS loops) run.
-    pub rollouts: u64,
-    /// Unit moves made by rollouts.
-    pub rollout_steps: u64,
-    /// Rollouts cut short by the rollout cap.
-    pub truncated: u64,
-}
-
-impl Counters {
-    /// Counts one rollout of `steps` moves; `detected` is false when it was cut short.
-    pub fn add(&mut self, steps: u32, detected: bool) {
-        self.rollouts += 1;
-        self.rollout_steps += steps as u64;
-        self.truncated += (!detected) as u64;
-    }
-}
-
-impl std::ops::AddAssign for Counters {
-    fn add_assign(&mut self, o: Counters) {
-        self.rollouts += o.rollouts;
-        self.rollout_steps += o.rollout_steps;
-        self.truncated += o.truncated;
-    }
 }
 
 /// The result of one trial.
@@ -174,8 +149,8 @@ impl Episode {
     /// Trial 0 of `cfg` (the trial the page shows).
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field.
-    pub fn new(cfg: &Config) -> Result<Episode, ConfigError> {
+    /// A [`ParamError`] naming the first invalid field.
+    pub fn new(cfg: &Config) -> Result<Episode, ParamError> {
         Episode::trial(cfg, 0)
     }
 
@@ -184,8 +159,8 @@ impl Episode {
     /// so any split of a batch gives the same trials.
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field.
-    pub fn trial(cfg: &Config, index: u64) -> Result<Episode, ConfigError> {
+    /// A [`ParamError`] naming the first invalid field.
+    pub fn trial(cfg: &Config, index: u64) -> Result<Episode, ParamError> {
         let Game {
             torus,
             sensor,
@@ -200,18 +175,22 @@ impl Episode {
         });
         let info = cfg.searcher.info();
         let searcher = (info.build)(&Setup {
-            cfg,
+            settings: &cfg.settings,
             torus: &torus,
+            sensor: &sensor,
             start,
+            rv: cfg.rv,
+            step_cap: cfg.step_cap,
         });
+        let s = &cfg.settings;
         let mut ep = Episode {
             cfg: cfg.clone(),
             info,
-            belief: BeliefState::new(cfg.belief, prior, plan),
+            belief: BeliefState::new(s.choice(&BELIEF), prior, plan),
             searcher,
             rng: rng::stream(cfg.seed, 2 * index + 1),
-            budget: Budget::new(cfg.loops, cfg.ms),
-            traces: Traces::new(cfg.keep_traces as usize),
+            budget: Budget::new(s.u32(&LOOPS), s.opt_float(&MS)),
+            traces: Traces::new(s.u32(&KEEP_TRACES) as usize),
             counters: Counters::default(),
             target,
             optimal: sensor.optimal_steps(&torus, start, target),
@@ -235,8 +214,8 @@ impl Episode {
     /// searcher: `crate::analysis::exact`).
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field.
-    pub fn blind(cfg: &Config) -> Result<Episode, ConfigError> {
+    /// A [`ParamError`] naming the first invalid field.
+    pub fn blind(cfg: &Config) -> Result<Episode, ParamError> {
         Episode::blind_trial(cfg, 0)
     }
 
@@ -245,8 +224,8 @@ impl Episode {
     /// up to its detection.
     ///
     /// # Errors
-    /// A [`ConfigError`] naming the first invalid field.
-    pub fn blind_trial(cfg: &Config, i: u64) -> Result<Episode, ConfigError> {
+    /// A [`ParamError`] naming the first invalid field.
+    pub fn blind_trial(cfg: &Config, i: u64) -> Result<Episode, ParamError> {
         let mut ep = Episode::trial(cfg, i)?;
         ep.blind = true;
         ep.status = Status::Running;

@@ -2,7 +2,8 @@
 //! together. The page shows a race side by side; with the same seed the
 //! runs share their target.
 
-use crate::config::{Config, ConfigError};
+use crate::config::Config;
+use crate::param::ParamError;
 use crate::run::episode::{Episode, Status};
 
 /// Episodes stepped together. A searcher that does not deliberate, racing
@@ -24,11 +25,11 @@ impl Race {
     /// Trial 0 of each config.
     ///
     /// # Errors
-    /// A [`ConfigError`] for the first invalid config, or for a count of
+    /// A [`ParamError`] for the first invalid config, or for a count of
     /// configs outside 1..=[`MAX_RUNS`].
-    pub fn new(configs: &[Config]) -> Result<Race, ConfigError> {
+    pub fn new(configs: &[Config]) -> Result<Race, ParamError> {
         if configs.is_empty() || configs.len() > MAX_RUNS {
-            return Err(ConfigError::new(
+            return Err(ParamError::new(
                 "race",
                 format!("{} configs", configs.len()),
                 format!("1 to {MAX_RUNS} configs"),
@@ -136,9 +137,9 @@ mod tests {
         // the MCTS run, never gets ahead of it, and then follows its plan.
         let mcts = Config {
             n: 12,
-            loops: 10,
             ..Config::default()
-        };
+        }
+        .with(&[("loops", "10")]);
         let beam = mcts.clone().with(&[
             ("searcher", "beam"),
             ("beam_width", "8"),
@@ -169,9 +170,9 @@ mod tests {
         // are kept for the process.)
         let mcts = Config {
             n: 13,
-            loops: 10,
             ..Config::default()
-        };
+        }
+        .with(&[("loops", "10")]);
         let beam = mcts.clone().with(&[
             ("searcher", "beam"),
             ("beam_width", "6"),
@@ -223,9 +224,9 @@ mod tests {
     fn a_walker_keeps_pace_with_mcts_and_shares_its_target() {
         let mcts = Config {
             n: 15,
-            loops: 10,
             ..Config::default()
-        };
+        }
+        .with(&[("loops", "10")]);
         let mut rw = mcts.clone();
         rw.set("searcher", "rw").unwrap();
         let mut race = Race::new(&[mcts.clone(), rw]).unwrap();

@@ -20,15 +20,18 @@
 //! earned on targets that are no longer possible: they value searched
 //! cells, and with ~10⁵ pass-through visits they outweigh the new evidence
 //! for the rest of the trial, trapping the searcher in 2- and 4-cycles
-//! (README, "Where it departs from the paper"). Each count is then
+//! (`docs/model.md`, "Departures that keep MCTS out of traps"). Each count is then
 //! multiplied by the decay factor (rounded down, the reward sum scaled with
 //! it so that each mean is kept): old evidence fades geometrically, by the
 //! number of moves that changed the belief. A decay of 1 is the paper's
 //! table exactly; 0 clears it whenever the belief changes.
 
-use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
+use super::uct::argmax_random;
+use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
 use crate::game::lattice::{Move, Torus};
-use crate::searchers::Visit;
+use crate::param::{Param, ParamKind, Value};
+use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::walks::visit::Visit;
 
 /// Per-cell MCTS statistics.
 #[derive(Clone, Debug)]
@@ -45,10 +48,25 @@ pub struct CellTable {
     decay: f64,
 }
 
-/// The default decay factor. Measured at N = 40, uniform target, 40 trials,
-/// step cap 5000 (README): decay 1 (the paper) 1941 steps, 9 capped; 0.95:
-/// 449, 1 capped; 0.9: 620, 1; 0.8: 367, 0; 0.5: 450, 0; 0.25: 606, 0.
+/// The default decay factor (`EXPERIMENTS.md`, "The decay of the cells
+/// table", has the measurements it was chosen by).
 pub const DEFAULT_DECAY: f64 = 0.8;
+
+/// The factor the table's counts are multiplied by when the belief changes.
+pub static DECAY: Param = Param {
+    key: "decay",
+    label: "Table decay",
+    kind: ParamKind::Float {
+        min: 0.0,
+        max: 1.0,
+        min_open: false,
+    },
+    default: Value::Float(DEFAULT_DECAY),
+    help: "cells: when a move searches new cells, each table count is multiplied by this (rounded down, the mean kept), so stale statistics fade; 1 keeps them for ever (the paper), 0 clears them",
+    aliases: &[],
+    choice_labels: &[],
+    advanced: true,
+};
 
 /// Records each distinct cell of a loop with the index of its first visit
 /// (root 0, selected neighbour 1, rollout move j at j + 1).

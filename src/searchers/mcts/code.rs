@@ -22,9 +22,11 @@
 //! win every later selection. Statistics persist for the whole trial unless
 //! reset each move.
 
-use super::{argmax_random, rollout, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee};
+use super::uct::argmax_random;
+use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
 use crate::game::lattice::{Move, Torus};
-use crate::searchers::Visit;
+use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::walks::visit::Visit;
 
 /// Per-cell statistics of the authors' code.
 #[derive(Clone, Debug)]
@@ -162,7 +164,7 @@ impl Stats for CodeTable {
 #[cfg(test)]
 mod tests {
     use crate::config::Config;
-    use crate::display::view::Layer;
+    use crate::game::layer::Layer;
     use crate::run::episode::{Episode, Status};
 
     #[test]

@@ -12,7 +12,7 @@
 use crate::game::belief::BeliefState;
 use crate::game::coverage::Coverage;
 use crate::game::lattice::{Move, Sensor, Torus};
-use crate::searchers::plan::toward;
+use crate::searchers::planning::far_goal::toward;
 
 /// Where a plan walk is along its plan.
 #[derive(Clone, Copy, Debug, Default)]
@@ -60,7 +60,12 @@ mod tests {
         c.set("sigma", "inf").unwrap();
         let g = c.game().unwrap();
         let t = &g.torus;
-        let belief = crate::game::belief::BeliefState::new(c.belief, g.prior.clone(), None);
+        let belief = crate::game::belief::BeliefState::new(
+            c.settings
+                .choice::<crate::game::belief::Belief>(&crate::searchers::mcts::search::BELIEF),
+            g.prior.clone(),
+            None,
+        );
         let mut cov = Coverage::new(t.cells());
         // A plan along row 5 from x = 1 to 6.
         let plan: Vec<u32> = (1..=6).map(|x| t.cell(x, 5)).collect();

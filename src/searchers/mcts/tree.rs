@@ -2,12 +2,13 @@
 //! searcher's position, one node expanded per loop, subtree reuse after
 //! each real move, in a bounded arena.
 
-use super::{
-    argmax_random, rollout, uct_terms, ChildStat, DecisionView, LoopEnv, LoopReport, Stats, Tee,
-};
+use super::uct::argmax_random;
+use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
 use crate::game::lattice::{Move, Torus};
 use crate::game::rng;
-use crate::searchers::NoVisit;
+use crate::param::{Param, ParamKind, Value};
+use crate::searchers::decision::{uct_terms, ChildStat, DecisionView};
+use crate::searchers::walks::visit::NoVisit;
 
 const NONE: u32 = u32::MAX;
 
@@ -18,6 +19,21 @@ pub const DEFAULT_MAX_NODES: u32 = 1 << 17;
 pub const MIN_MAX_NODES: u32 = 16;
 /// The largest arena cap accepted (2 × 512 MiB).
 pub const MAX_MAX_NODES: u32 = 1 << 24;
+
+/// The tree's arena cap.
+pub static TREE_NODES: Param = Param {
+    key: "tree_nodes",
+    label: "Tree node cap",
+    kind: ParamKind::Int {
+        min: MIN_MAX_NODES as u64,
+        max: MAX_MAX_NODES as u64,
+    },
+    default: Value::Int(DEFAULT_MAX_NODES as u64),
+    help: "tree: arena cap in nodes (32 bytes each, twice)",
+    aliases: &[],
+    choice_labels: &[],
+    advanced: true,
+};
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -270,7 +286,7 @@ mod tests {
     use super::*;
     use crate::config::Config;
     use crate::game::belief::{Belief, BeliefState};
-    use crate::searchers::{Policy, PolicyKind};
+    use crate::searchers::walks::policy::{Policy, PolicyKind};
 
     /// Runs `loops` loops of `tree` from `root` on the game of a 12-torus
     /// (σ = 2.5, rollouts capped at `cap`), with practice targets from the
@@ -293,7 +309,7 @@ mod tests {
                 policy: &mut policy,
                 rng: &mut rng,
                 rollout_cap: cap,
-                c: c.c,
+                c: c.settings.float(&crate::searchers::mcts::search::C),
                 trace: None,
             };
             let report = tree.iterate(&mut env, root);
