@@ -3,24 +3,24 @@
 // view parameters (speed, autoplay, race), and an import being replayed.
 // Commands go one way, to the controller; frames come back as events.
 
-import { loadEngine, engineModule, schema as engineSchema, describeError } from './engine.js';
-import { readUrl, writeUrl, raceOptions, splitView, readExperimentUrl, defaultExperiment, presetChoices } from './url-state.js';
-import { Controller } from './controller.js';
-import { SearchSession } from './search-session.js';
-import { Controls } from './controls.js';
-import { ViewState } from './view-state.js';
-import { Boards } from './boards.js';
-import { Painter } from './paint.js';
-import { Legend } from './panels/legend.js';
-import { updateStats } from './panels/stats.js';
-import { updateDecision } from './panels/decision.js';
-import { StepsChart } from './charts.js';
-import { BatchPanel } from './batch.js';
-import { ExperimentsView } from './experiments.js';
-import { bindShare, replayVerdict } from './share.js';
-import { PRESETS } from './presets.js';
-import { installTestHook } from './test-hook.js';
-import { $, setText, showMessage } from './ui.js';
+import { loadEngine, engineModule, schema as engineSchema, describeError } from './shared/engine.js';
+import { readUrl, writeUrl, raceOptions, splitView, readExperimentUrl, defaultExperiment, presetChoices } from './shared/url-state.js';
+import { Controller } from './live/controller.js';
+import { SearchSession } from './live/search-session.js';
+import { Controls } from './live/controls.js';
+import { ViewState } from './live/view-state.js';
+import { Boards } from './live/boards.js';
+import { Painter } from './live/paint.js';
+import { Legend } from './live/panels/legend.js';
+import { updateStats } from './live/panels/stats.js';
+import { updateDecision } from './live/panels/decision.js';
+import { StepsChart } from './live/steps-chart.js';
+import { BatchPanel } from './workers/batch.js';
+import { ExperimentsView } from './experiments/view.js';
+import { bindShare, replayVerdict } from './live/share.js';
+import { PRESETS } from './live/presets.js';
+import { installTestHook } from './shared/test-hook.js';
+import { $, setText, showMessage } from './shared/ui.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;

@@ -6,7 +6,7 @@
 // the origin, except where a test provokes an error on purpose.
 //
 // Tests read and drive the page only through its documented test interface,
-// `window.torusTest` (www/test-hook.js), and through the page's own controls.
+// `window.torusTest` (www/shared/test-hook.js), and through the page's own controls.
 import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
 import { copyFile, mkdir, readFile } from 'node:fs/promises';
@@ -276,7 +276,7 @@ test('layer toggles change the drawing', { timeout: 120_000 }, async () => {
 test('the path is drawn incrementally, a bounded number of points per frame, and starts over for a new run', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0', async (page) => {
     const r = await page.evaluate(async () => {
-      const { Renderer, PATH_POINTS_PER_FRAME } = await import('./www/renderer.js');
+      const { Renderer, PATH_POINTS_PER_FRAME } = await import('./www/live/renderer.js');
       const canvas = document.createElement('canvas');
       canvas.width = canvas.height = 400;
       document.body.append(canvas);

@@ -4,7 +4,7 @@
 // frame (`decision`, with `leading`: the moves the final rule would choose
 // among now).
 
-import { $, setText, fmtInt, fmtNum, CHOICE_LABELS } from '../ui.js';
+import { $, setText, fmtInt, fmtNum, CHOICE_LABELS } from '../../shared/ui.js';
 import { MOVE_NAMES } from '../renderer.js';
 import { planningText } from './stats.js';
 

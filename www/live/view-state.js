@@ -3,7 +3,7 @@
 // rollout traces, arrows, grid, reveal and the periodic view. It turns them
 // into the frame request the controller sends with each frame.
 
-import { $ } from './ui.js';
+import { $ } from '../shared/ui.js';
 
 /** Heat layers ticked on first load. */
 const DEFAULT_LAYERS = ['prior', 'visits'];

@@ -3,7 +3,7 @@
 // writes them (the same text as the URL); every change goes back as text
 // to onParam(key, raw), which the engine parses. Nothing here checks a value.
 
-import { $, CHOICE_LABELS, fillSelect } from './ui.js';
+import { $, CHOICE_LABELS, fillSelect } from '../shared/ui.js';
 
 /** Speeds on the slider, in loops per frame. */
 const SPEEDS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
