@@ -30,7 +30,7 @@ export class ConfigForm {
     this.entries = paramEntries(schema);
     this.onParam = onParam;
     this.onPaintClear = onPaintClear;
-    this.fields = new Map(); // key -> { entry, field, set(text) }
+    this.fields = new Map(); // key -> { entry, field, set(text), inputs }
     this.applicable = new Set();
     // The grid sets the first cell parameter (the start) until told otherwise.
     this.defaultPick = this.entries.find((e) => e.kind === 'cell')?.key ?? null;
@@ -46,7 +46,7 @@ export class ConfigForm {
   }
 
   build(schema, box) {
-    const groups = new Map(); // "advanced?group" -> fieldset
+    const groups = new Map(); // "main:GROUP" or "more:GROUP" -> its fieldset
     const more = document.createElement('details');
     more.className = 'more';
     const summary = document.createElement('summary');
@@ -239,6 +239,7 @@ function cell(entry, form) {
   const pick = pickButton(entry, form, 'Pick on grid');
   pick.id = `${entry.key}-pick`;
   pick.title = `Click a cell of the lattice to set ${entry.label}`;
+  pick.setAttribute('aria-label', `${entry.label}: pick on the grid`);
   wrap.append(el, pick);
   return { main: el, node: wrap, inputs: [el, pick], set: (t) => (el.value = t) };
 }
@@ -248,6 +249,7 @@ function paint(entry, form) {
   const wrap = document.createElement('span');
   wrap.className = 'paint-tools';
   const toggle = pickButton(entry, form, 'Paint on the grid');
+  toggle.setAttribute('aria-label', `${entry.label}: paint on the grid`);
   const brush = Object.assign(document.createElement('input'), { type: 'range', min: '0', max: '10', step: '1', value: '2', className: 'brush', id: `${entry.key}-brush` });
   const erase = Object.assign(document.createElement('input'), { type: 'checkbox', className: 'erase', id: `${entry.key}-erase` });
   const clear = Object.assign(document.createElement('button'), { type: 'button', textContent: 'Clear', id: `${entry.key}-clear` });
