@@ -20,7 +20,7 @@
 // every ratio is taken within one measurement (its own loop window) first.
 // Usage: node tests/e2e/bench.mjs [--native] [--seconds S] [--repeat R]
 // Needs `make build` (www/pkg) first. It reads and drives the page through
-// its test interface, `window.torusTest` (www/test-hook.js).
+// its test interface, `window.torusTest` (www/shared/test-hook.js).
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';

@@ -34,7 +34,7 @@ test('dist/ works from a sub-path of a static host', { timeout: 120_000 }, async
       // harness turns any CSP violation into a console error, checked above.
       const meta = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute('content');
       assert.match(await readFile(path.join(DIST, '_headers'), 'utf8'), /require-trusted-types-for 'script'/);
-      for (const file of ['', 'www/search-worker.js', 'www/trial-worker.js', 'www/pkg/torus_search_bg.wasm']) {
+      for (const file of ['', 'www/workers/search-worker.js', 'www/workers/trial-worker.js', 'www/pkg/torus_search_bg.wasm']) {
         const res = await page.request.get(`${server.url}some/sub/path/${file}`);
         assert.equal(res.status(), 200, file);
         assert.equal(res.headers()['content-security-policy'], meta, `${file || 'index.html'} has the CSP header`);

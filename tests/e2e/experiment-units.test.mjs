@@ -1,6 +1,6 @@
 // Unit tests of the Experiments view's pure modules, in Node with the real
-// engine: the experiment's URL state (www/url-state.js), the chunk plan and
-// the row layout of a run (www/experiment-runner.js).
+// engine: the experiment's URL state (www/shared/url-state.js), the chunk plan and
+// the row layout of a run (www/experiments/runner.js).
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import path from 'node:path';
@@ -9,8 +9,8 @@ import { fileURLToPath } from 'node:url';
 import {
   CUSTOM, defaultExperiment, experimentSpec, formatSeries, formatSweep, parsePairs, parseSeries, parseSweep,
   presetChoices, readExperimentUrl, splitView, writeExperimentUrl,
-} from '../../www/url-state.js';
-import { chunkPlan } from '../../www/experiment-runner.js';
+} from '../../www/shared/url-state.js';
+import { chunkPlan } from '../../www/experiments/runner.js';
 
 const PKG = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www/pkg');
 const engine = await import(path.join(PKG, 'torus_search.js'));

@@ -1,4 +1,4 @@
-// End-to-end tests of the Experiments view (www/experiments.js) in Debian's
+// End-to-end tests of the Experiments view (www/experiments/view.js) in Debian's
 // Chromium, with the shared harness: the page and the CLI give the same
 // result for the same experiment and seed (byte for byte), whatever the
 // number of workers; a cancelled run leaves the page usable and the next
@@ -6,7 +6,7 @@
 // change nothing; downloads; a point opens in the live view.
 // Needs `make build` first (www/pkg, www/vendor); builds the debug CLI if stale.
 //
-// The tests read and drive the view through `window.torusTest` (www/test-hook.js)
+// The tests read and drive the view through `window.torusTest` (www/shared/test-hook.js)
 // and its own controls. Experiments are tiny (N = 12, a few trials).
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';

@@ -6,9 +6,9 @@ import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { readUrl, writeUrl, raceOptions } from '../../www/url-state.js';
-import { wrapSegments } from '../../www/renderer.js';
-import { Controller } from '../../www/controller.js';
+import { readUrl, writeUrl, raceOptions } from '../../www/shared/url-state.js';
+import { wrapSegments } from '../../www/live/renderer.js';
+import { Controller } from '../../www/live/controller.js';
 
 const PKG = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www/pkg');
 const engine = await import(path.join(PKG, 'torus_search.js'));

@@ -6,7 +6,7 @@
 // the origin, except where a test provokes an error on purpose.
 //
 // Tests read and drive the page only through its documented test interface,
-// `window.torusTest` (www/test-hook.js), and through the page's own controls.
+// `window.torusTest` (www/shared/test-hook.js), and through the page's own controls.
 import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
 import { copyFile, mkdir, readFile } from 'node:fs/promises';
@@ -221,7 +221,7 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
       ['#rollout', (p) => p.selectOption('#rollout', 'greedy'), 'rollout=greedy', false],
       ['#belief', (p) => p.selectOption('#belief', 'prior'), 'belief=prior', false],
       ['#loops', (p) => p.fill('#loops', '7'), 'loops=7', false],
-      ['#budget', (p) => p.selectOption('#budget', 'ms'), 'ms=20', false],
+      ['#ms', (p) => p.fill('#ms', '20'), 'ms=20', false],
       ['#c', (p) => p.fill('#c', '0.5'), 'c=0.5', false],
       ['#mu', async (p) => {
         await p.selectOption('#rollout', 'levy');
@@ -276,7 +276,7 @@ test('layer toggles change the drawing', { timeout: 120_000 }, async () => {
 test('the path is drawn incrementally, a bounded number of points per frame, and starts over for a new run', { timeout: 120_000 }, async () => {
   await withApp('?autoplay=0', async (page) => {
     const r = await page.evaluate(async () => {
-      const { Renderer, PATH_POINTS_PER_FRAME } = await import('./www/renderer.js');
+      const { Renderer, PATH_POINTS_PER_FRAME } = await import('./www/live/renderer.js');
       const canvas = document.createElement('canvas');
       canvas.width = canvas.height = 400;
       document.body.append(canvas);
@@ -885,7 +885,7 @@ test('every control lies within its panel and the page never scrolls sideways, a
   await withApp('?race=horizon', async (page) => {
     // A painted prior shows the paint tools in the configuration too.
     await page.selectOption('#prior', 'paint');
-    assert.ok(await page.locator('#brush').isVisible(), 'the paint tools show');
+    assert.ok(await page.locator('#paint-brush').isVisible(), 'the paint tools show');
     for (const width of [380, 800, 1000, 1400, 1920]) {
       await page.setViewportSize({ width, height: 900 });
       await page.click('#tab-live');

@@ -11,8 +11,8 @@ import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import fc from 'fast-check';
-import { readUrl, raceOptions, splitView, readExperimentUrl, presetChoices } from '../../www/url-state.js';
-import { readEpisode, EPISODE_FORMAT, MAX_EPISODE_BYTES } from '../../www/share.js';
+import { readUrl, raceOptions, splitView, readExperimentUrl, presetChoices } from '../../www/shared/url-state.js';
+import { readEpisode, EPISODE_FORMAT, MAX_EPISODE_BYTES } from '../../www/live/share.js';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
 const engine = await import(path.join(ROOT, 'www/pkg/torus_search.js'));

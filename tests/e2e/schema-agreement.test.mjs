@@ -6,7 +6,7 @@
 // parameter is deliberate: rerun with UPDATE_SCHEMA_SNAPSHOT=1 to accept it.
 // Then each surface is probed on its own, at and beyond every bound:
 // - the core: the engine's parser (parseParams) and its default config;
-// - the URL: the page's parser (www/url-state.js readUrl), which hands
+// - the URL: the page's parser (www/shared/url-state.js readUrl), which hands
 //   the engine only what it does not own;
 // - the CLI: `torus-search run --dry-run` with each flag, its exit code
 //   and the resolved config, and `run --help` for flags and defaults.
@@ -18,7 +18,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { readUrl } from '../../www/url-state.js';
+import { readUrl } from '../../www/shared/url-state.js';
 import { cliBinary } from './harness.mjs';
 
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');

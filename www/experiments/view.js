@@ -1,16 +1,16 @@
 // The Experiments view: pick a named experiment (the engine's
 // experimentList()) or build a custom sweep, run it on a pool of Web
-// Workers (www/experiment-runner.js), watch its charts fill in
-// (www/experiment-charts.js), download CSV / JSON / SVG / PNG, load a
+// Workers (www/experiments/runner.js), watch its charts fill in
+// (www/experiments/charts.js), download CSV / JSON / SVG / PNG, load a
 // results file, and open a point in the live view. Choices and limits come
 // from the engine's schema and experiment list; every value is checked by
 // the engine (through url-state.js's experiment reader, the same as a
 // URL's); every statistic shown is the engine's.
 
-import { $, setText, showMessage, download, fillSelect } from './ui.js';
-import { CUSTOM, experimentSpec, formatPairs, formatSeries, parsePairs, parseSeries, presetChoices, readExperimentUrl, writeExperimentUrl } from './url-state.js';
-import { ExperimentRunner } from './experiment-runner.js';
-import { MODE_LABELS, chartModes, drawExperiment, pointSummary, standaloneSvg, svgToPng, xName } from './experiment-charts.js';
+import { $, setText, showMessage, download, fillSelect } from '../shared/ui.js';
+import { CUSTOM, experimentSpec, formatPairs, formatSeries, parsePairs, parseSeries, presetChoices, readExperimentUrl, writeExperimentUrl } from '../shared/url-state.js';
+import { ExperimentRunner } from './runner.js';
+import { MODE_LABELS, chartModes, drawExperiment, pointSummary, standaloneSvg, svgToPng, xName } from './charts.js';
 
 /** Least time between live chart redraws while a run goes on (ms). */
 const LIVE_MS = 1000;

@@ -1,9 +1,9 @@
-// The page's side of the search worker (www/search-worker.js): a request /
+// The page's side of the search worker (www/workers/search-worker.js): a request /
 // answer channel, and a RunView per run that holds what the page was last
 // sent (the frame header, the path so far, heatmap renderings, traces). The
 // page reads run views synchronously and never touches the worker's memory.
 
-import { scriptURL } from './trusted.js';
+import { scriptURL } from '../shared/trusted.js';
 
 /** One run as the page sees it: fixed facts plus the latest frame. */
 export class RunView {
@@ -140,11 +140,11 @@ export class SearchSession {
     this.worker?.terminate();
     for (const p of this.pending.values()) p.reject(new EngineError('the search worker was restarted', false));
     this.pending.clear();
-    this.worker = new Worker(scriptURL(new URL('./search-worker.js', import.meta.url)), { type: 'module' });
+    this.worker = new Worker(scriptURL(new URL('../workers/search-worker.js', import.meta.url)), { type: 'module' });
     this.worker.onmessage = (e) => this.receive(e.data);
     this.worker.onerror = (e) => {
       e.preventDefault?.();
-      const err = new EngineError(`the search worker failed: ${e.message || 'could not load www/search-worker.js'}`, false);
+      const err = new EngineError(`the search worker failed: ${e.message || 'could not load www/workers/search-worker.js'}`, false);
       for (const p of this.pending.values()) p.reject(err);
       this.pending.clear();
     };

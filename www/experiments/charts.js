@@ -13,7 +13,7 @@
 //   hist   (targets experiments) one heatmap of sampled targets per point
 // The experiment's header names the chart that fits it first (its `chart`).
 
-import { scriptURL } from './trusted.js';
+import { scriptURL } from '../shared/trusted.js';
 
 /** Plot's class name for its elements; www/style.css styles them (see drawExperiment). */
 const CLASS = 'exp-plot';
@@ -37,8 +37,8 @@ function loadScript(src) {
 /** Loads d3 and Plot once; resolves to the Plot namespace. */
 export function loadPlot() {
   plotReady ??= (async () => {
-    if (!globalThis.d3) await loadScript(new URL('./vendor/d3.min.js', import.meta.url).href);
-    if (!globalThis.Plot) await loadScript(new URL('./vendor/plot.umd.min.js', import.meta.url).href);
+    if (!globalThis.d3) await loadScript(new URL('../vendor/d3.min.js', import.meta.url).href);
+    if (!globalThis.Plot) await loadScript(new URL('../vendor/plot.umd.min.js', import.meta.url).href);
     return globalThis.Plot;
   })();
   return plotReady;

@@ -3,15 +3,6 @@
 
 export const $ = (id) => document.getElementById(id);
 
-/** Friendlier names for some choices (a choice without one shows its name). */
-export const CHOICE_LABELS = {
-  prior: { gaussian: 'Gaussian', delta: 'Delta (centre)', uniform: 'Uniform', paint: 'Paint your own' },
-  variant: { cells: 'cells (paper)', code: "code (authors' MATLAB)" },
-  rollout: { rw: 'random walk', levy: 'Lévy flight', nsarw: 'NSARW' },
-  belief: {},
-  final: { visits: 'most picks', mean: 'best mean', uct: 'best UCT' },
-};
-
 /** Replaces a <select>'s options with `[value, label]` pairs (text only). */
 export function fillSelect(el, options) {
   el.replaceChildren(
@@ -35,6 +26,14 @@ export function showMessage(text, { append = false } = {}) {
   const el = $('message');
   el.textContent = append && !el.hidden && el.textContent ? `${el.textContent}\n${text}` : text;
   el.hidden = !text;
+}
+
+/** The page cannot run: says why, in the message and the badge. Returns null. */
+export function showFatal(text) {
+  document.body.dataset.state = 'error';
+  setText('state-badge', 'error');
+  showMessage(text);
+  return null;
 }
 
 const INT_FORMAT = new Intl.NumberFormat('en-US', { maximumFractionDigits: 0 });

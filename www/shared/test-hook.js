@@ -9,7 +9,7 @@
 //                      target, optimal, status, steps, pathLen, work, rolloutSteps, scores,
 //                      intent, planning }
 //   path(i = 0)        run i's path so far (cells, start first)
-//   dispatch(cmd)      a controller command (see www/controller.js)
+//   dispatch(cmd)      a controller command (see www/live/controller.js)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers

@@ -1,7 +1,7 @@
 // The playback state machine. It owns the requestAnimationFrame loop and
 // takes commands one way, through dispatch(); what happens comes back as
-// events. The search runs in a worker (www/search-worker.js, reached
-// through www/search-session.js): each animation frame the controller asks
+// events. The search runs in a worker (www/workers/search-worker.js, reached
+// through www/live/search-session.js): each animation frame the controller asks
 // for the next frame of the search and hands the latest one to its 'frame'
 // listeners, so the page's thread only draws. It holds no game logic.
 //

@@ -1,4 +1,4 @@
-// Runs an experiment on a pool of Web Workers (www/worker-pool.js), the
+// Runs an experiment on a pool of Web Workers (www/workers/worker-pool.js), the
 // same way the CLI does: the engine plans the units, the workers run
 // deterministic chunks of units (experimentRun), the rows are put back in
 // unit order, and the engine turns them into the result (experimentResult),
@@ -11,7 +11,7 @@
 // and the ETA sees every series' cost early. Which unit is which point is
 // the engine's business, not this file's.
 
-import { WorkerPool } from './worker-pool.js';
+import { WorkerPool } from '../workers/worker-pool.js';
 
 /** Chunks per worker over a run: enough to balance uneven units, few enough to keep messages cheap. */
 const CHUNKS_PER_WORKER = 512;

@@ -1,7 +1,7 @@
 // The legend: a colour bar per heat layer drawn, with its range as the
 // engine measured it, and the markers' key.
 
-import { $, setText, fmtInt } from '../ui.js';
+import { $, setText, fmtInt } from '../../shared/ui.js';
 import { drawColorbar } from '../renderer.js';
 
 const MARKS = [['m-searcher', 'searcher'], ['m-start', 'start'], ['m-target', 'target'], ['m-practice', 'practice target'], ['m-path', 'path'], ['m-rollout', 'rollout']];

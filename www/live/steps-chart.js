@@ -2,7 +2,7 @@
 // against running time, one series per run, plus each run's optimal steps as
 // a dashed line once it is known.
 
-import uPlot from './vendor/uPlot.esm.js';
+import uPlot from '../vendor/uPlot.esm.js';
 
 const SERIES_COLORS = ['#ffd166', '#7fd4ff'];
 

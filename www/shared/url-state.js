@@ -329,3 +329,20 @@ export function experimentSpec(state) {
     series: custom && state.series.length ? state.series.map((s) => ({ label: s.label, params: Object.fromEntries(s.params) })) : null,
   };
 }
+
+/**
+ * Reads the page's whole query: which view, the live view's config and view
+ * parameters (the defaults when the Experiments view is shown), and the
+ * Experiments view's state, with every message about bad values.
+ * @returns {{ page: string, config: object, view: object, experiment: object, messages: string[] }}
+ */
+export function readPage(engine, schema, search, races) {
+  const split = splitView(search);
+  const live = readUrl(engine, schema, split.view === 'live' ? split.query : '', races);
+  const list = engine.experimentList();
+  const exp = split.view === 'experiments'
+    ? readExperimentUrl(engine, schema, split.query, list, presetChoices(engine, schema, list))
+    : { state: defaultExperiment(engine, schema, list), messages: [], conflict: null };
+  const messages = [...split.messages, ...live.messages, ...exp.messages, ...(exp.conflict ? [exp.conflict] : [])];
+  return { page: split.view, config: live.config, view: live.view, experiment: exp.state, messages };
+}

@@ -23,7 +23,7 @@
 // Every answer carries the run generation `gen`, so the page drops answers
 // meant for runs it has already replaced.
 
-import { loadEngine, describeError } from './engine.js';
+import { loadEngine, describeError } from '../shared/engine.js';
 
 /** Longest stretch of search between looks at the message queue (ms). */
 const SLICE_MS = 6;

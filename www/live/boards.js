@@ -2,7 +2,7 @@
 // from the run's latest frame and the view options, and the pointer on
 // them (clicking a cell, painting strokes).
 
-import { $, setText } from './ui.js';
+import { $, setText } from '../shared/ui.js';
 import { Renderer, drawNotice } from './renderer.js';
 
 export class Boards {

@@ -1,11 +1,11 @@
 // A Web Worker with its own wasm instance: runs batch trials and experiment
-// units for www/worker-pool.js. No game logic: each task is one facade call.
+// units for www/workers/worker-pool.js. No game logic: each task is one facade call.
 // Messages in:  { init: WebAssembly.Module }   (optional, first) the page's compiled engine
 //               { id, seq, task }             task: { kind: 'trial', config, index }
 //                                                  or { kind: 'experiment', spec, from, to }
 // Messages out: { id, seq, result }  (a trial: number[7]; experiment units: a
 //               Float64Array of rows, its buffer transferred), or { id, seq, error: string }.
-import { loadEngine, describeError } from './engine.js';
+import { loadEngine, describeError } from '../shared/engine.js';
 
 let ready = null;
 

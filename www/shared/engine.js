@@ -1,9 +1,9 @@
 // The door into the wasm engine (www/pkg, built from src/wasm.rs). The page
 // loads it for the schema, config edits, palettes and batch summaries; the
-// search worker (www/search-worker.js) loads its own instance for the runs;
+// search worker (www/workers/search-worker.js) loads its own instance for the runs;
 // the trial workers load one each for batches. No game logic lives here.
 
-import init, * as wasm from './pkg/torus_search.js';
+import init, * as wasm from '../pkg/torus_search.js';
 
 let ready = null;
 let compiled = null;
@@ -18,7 +18,7 @@ export function loadEngine(module = null) {
   ready ??= (async () => {
     let m = module;
     if (!m) {
-      const url = new URL('./pkg/torus_search_bg.wasm', import.meta.url);
+      const url = new URL('../pkg/torus_search_bg.wasm', import.meta.url);
       const res = await fetch(url);
       if (!res.ok) throw new Error(`${url.pathname}: HTTP ${res.status}`);
       m = await WebAssembly.compile(await res.arrayBuffer());

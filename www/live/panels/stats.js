@@ -2,7 +2,7 @@
 // scoreboard. Every number comes from a run's latest frame (the engine
 // computed it) or from the controller's meter.
 
-import { $, setText, fmtInt, fmtRate } from '../ui.js';
+import { $, setText, fmtInt, fmtRate } from '../../shared/ui.js';
 
 /** "1.23", or a dash until the engine reports a ratio. */
 const fmtRatio = (r) => (r === null || r === undefined ? '–' : r.toFixed(2));

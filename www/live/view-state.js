@@ -3,19 +3,19 @@
 // rollout traces, arrows, grid, reveal and the periodic view. It turns them
 // into the frame request the controller sends with each frame.
 
-import { $ } from './ui.js';
+import { $ } from '../shared/ui.js';
 
 /** Heat layers ticked on first load. */
 const DEFAULT_LAYERS = ['prior', 'visits'];
 const OPTION_IDS = ['layer-path', 'layer-intent', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
-const TRACE_IDS = ['layer-rollouts', 'rollout-k', 'layer-practice'];
+const TRACE_IDS = ['layer-rollouts', 'layer-practice'];
 
 export class ViewState {
   /**
    * @param {object} schema the engine's schema (its `layers`)
    * @param {{ redraw: () => void, traces: () => void }} on  called when a
-   *   view option changes; `traces` when the trace count changed, which
-   *   needs a fresh run (traces are kept from a run's start)
+   *   view option changes; `traces` when a trace layer is ticked or
+   *   unticked (a run keeps traces from its start: see traceCount)
    */
   constructor(schema, on) {
     this.layers = schema.layers;
@@ -33,13 +33,7 @@ export class ViewState {
     }
     box.prepend(frag);
     for (const id of OPTION_IDS) $(id).addEventListener('change', on.redraw);
-    this.kept = this.keepTraces();
-    for (const id of TRACE_IDS) {
-      $(id).addEventListener('change', () => {
-        if (this.keepTraces() !== this.kept) on.traces();
-        else on.redraw();
-      });
-    }
+    for (const id of TRACE_IDS) $(id).addEventListener('change', on.traces);
   }
 
   /** Heat layers to draw, bottom to top, as frame requests. */
@@ -64,27 +58,14 @@ export class ViewState {
     };
   }
 
-  /** How many rollout traces a run must keep (the engine's keep_traces). */
-  keepTraces() {
-    const k = Math.min(64, Math.max(1, Math.round(Number($('rollout-k').value)) || 1));
-    if ($('layer-rollouts').checked) return k;
+  /**
+   * How many rollout traces a run keeps (its keep_traces) for the traces
+   * drawn: `k` (the config's keep_traces, at least 1) with the rollouts
+   * shown, 1 for the practice target alone, else none.
+   */
+  traceCount(k) {
+    if ($('layer-rollouts').checked) return Math.max(1, k);
     return $('layer-practice').checked ? 1 : 0;
-  }
-
-  /** Records the trace count a fresh run was built with. */
-  usedTraces(k) {
-    this.kept = k;
-  }
-
-  /** Shows `k` kept traces (from a URL's keep_traces). */
-  setTraces(k) {
-    if (k > 0) {
-      $('layer-rollouts').checked = true;
-      $('rollout-k').value = String(k);
-    } else {
-      $('layer-rollouts').checked = false;
-      $('layer-practice').checked = false;
-    }
   }
 
   /** The drawing options. */
@@ -104,6 +85,5 @@ export class ViewState {
   /** Ticks the layers and options of the teaching view. */
   teaching() {
     for (const id of ['layer-rollouts', 'layer-practice', 'layer-intent', 'layer-visits', 'layer-prior', 'layer-arrows', 'layer-grid']) $(id).checked = true;
-    $('rollout-k').value = '3';
   }
 }

@@ -2,7 +2,7 @@
 // replay exactly. An episode file carries the page's URL query (every
 // parameter, the seed included), each run's engine config and its path.
 
-import { $, download, showMessage } from './ui.js';
+import { $, download, showMessage } from '../shared/ui.js';
 
 export const EPISODE_FORMAT = 'torus-search-episode';
 /** Files this page writes; it reads versions 1 and 2 (both carry url_query). */

@@ -1,4 +1,4 @@
-// A pool of Web Workers (www/trial-worker.js), each with its own wasm
+// A pool of Web Workers (www/workers/trial-worker.js), each with its own wasm
 // instance, for batch trials and experiment units in the browser. Tasks
 // are handed out one at a time, so fast and slow tasks balance across
 // workers; results are keyed by task number, and a task's result depends
@@ -7,7 +7,7 @@
 //   { kind: 'trial', config, index }          one batch trial → number[7]
 //   { kind: 'experiment', spec, from, to }    experiment units from..to → Float64Array of rows
 
-import { scriptURL } from './trusted.js';
+import { scriptURL } from '../shared/trusted.js';
 
 /** How many times a task is retried on a fresh worker after its worker died. */
 export const MAX_RETRIES = 2;

@@ -3,9 +3,9 @@
 // --json). Trial i depends only on (config, i), so any number of workers
 // gives the same results.
 
-import { $, setText, fmtInt, showMessage } from './ui.js';
+import { $, setText, fmtInt, showMessage } from '../shared/ui.js';
 import { WorkerPool } from './worker-pool.js';
-import { engineModule } from './engine.js';
+import { engineModule } from '../shared/engine.js';
 
 export class BatchPanel {
   /**

@@ -1,0 +1,139 @@
+// The live view's state: the engine config (edited only through the
+// engine) and the view parameters (speed, autoplay, race), and the ONE path
+// by which they change: change() loads a painting, shows the config in the
+// form, writes the URL and restarts the runs. Every edit, preset, opened
+// experiment point, replay, race and speed goes through it.
+
+import { writeUrl } from '../shared/url-state.js';
+import { showMessage } from '../shared/ui.js';
+
+export class LiveState {
+  /**
+   * @param {object} o
+   * @param {object} o.engine, o.schema, o.races   the wasm module, its schema, the race options
+   * @param {object} o.controller, o.painter, o.form, o.controls, o.viewState   the live view's parts
+   * @param {object} o.config, o.view              the starting config and view parameters
+   * @param {() => void} o.onUrl                   writes the page's URL (it reads query())
+   */
+  constructor({ engine, schema, races, controller, painter, form, controls, viewState, config, view, onUrl }) {
+    Object.assign(this, { engine, races, controller, painter, form, controls, viewState, config, view, onUrl });
+    this.paintKeys = schema.params.filter((p) => p.kind === 'paint').map((p) => p.key);
+    this.kept = null; // keep_traces of the runs under way
+    this.trapped = false;
+    this.restarted = [];
+    controller.on('error', (err) => {
+      this.trapped = err instanceof WebAssembly.RuntimeError;
+    });
+  }
+
+  /**
+   * The one path for a change: takes `config` and the `view` parameters
+   * given, shows them, writes the URL and (unless `restart` is false)
+   * restarts the runs, with `note` shown once they start. Resolves as
+   * restart() does.
+   */
+  change({ config = this.config, view = {}, autoplay, note = '', restart = true } = {}) {
+    this.config = config;
+    this.view = { ...this.view, ...view };
+    if (view.speed !== undefined) this.controller.dispatch({ type: 'speed', speed: this.view.speed });
+    const applicable = new Set(this.engine.applicable(config));
+    if (this.paintKeys.some((k) => applicable.has(k))) this.painter.load(config);
+    this.form.sync({ text: new Map(this.engine.configParams(config, true)), applicable, preset: this.engine.presetOf(config) ?? null });
+    this.controls.sync(this.view);
+    this.onUrl();
+    if (!restart) return Promise.resolve(true);
+    const ready = this.restart(autoplay);
+    if (note) showMessage(note);
+    return ready;
+  }
+
+  /** Sets one parameter from text through the engine; a bad value keeps the old one, with a message. */
+  edit(key, raw) {
+    let config;
+    try {
+      config = this.engine.setParam(this.config, key, raw);
+    } catch (err) {
+      config = this.withPainting(key, raw);
+      if (!config) {
+        const was = this.engine.configParams(this.config, true).find(([k]) => k === key)?.[1];
+        showMessage(`Invalid ${key} ${JSON.stringify(String(raw).slice(0, 40))}: ${err.message}.${was === undefined ? '' : ` Keeping ${key}=${was}.`}`);
+        this.change({ restart: false });
+        return Promise.resolve(false);
+      }
+    }
+    return this.change({ config });
+  }
+
+  /** An edit that puts an empty painting to use (prior=paint) starts from a blob in the middle; null if that does not help. */
+  withPainting(key, raw) {
+    for (const p of this.paintKeys) {
+      if (this.config[p] || p === key) continue;
+      try {
+        const config = this.engine.setParam(this.engine.setParam(this.config, p, this.painter.blob(this.config.n)), key, raw);
+        if (this.engine.applicable(config).includes(p)) return config;
+      } catch {
+        /* not this painting's doing */
+      }
+    }
+    return null;
+  }
+
+  /** Opens an engine config (a point of an experiment), with no race; `show()` first shows the live view. */
+  open(config, note, show) {
+    let checked;
+    try {
+      checked = this.engine.checkConfig(config);
+    } catch (err) {
+      showMessage(`Could not open that configuration: ${err.message}`);
+      return Promise.resolve(false);
+    }
+    show();
+    return this.change({ config: checked, view: { race: '' }, autoplay: true, note });
+  }
+
+  /** The live view's query: only what differs from the defaults (and the seed), or with `full` everything. */
+  query({ full = false } = {}) {
+    return writeUrl(this.engine, this.config, this.view, { full, races: this.races });
+  }
+
+  /** The engine configs of the runs: the config, and the race opponent's, keeping the traces the view draws. */
+  runConfigs() {
+    this.kept = this.viewState.traceCount(this.config.keep_traces);
+    const main = this.engine.setParam(this.config, 'keep_traces', String(this.kept));
+    const race = this.races.find((r) => r.id === this.view.race);
+    if (!race?.pairs.length) return [main];
+    return [main, race.pairs.reduce((c, [key, v]) => this.engine.setParam(c, key, v), main)];
+  }
+
+  /** Fresh runs from the current config (same seed); resolves once they have a frame. */
+  restart(autoplay = this.controller.state === 'running' || this.view.autoplay) {
+    if (this.trapped) {
+      // A trap in the page's own wasm instance (not the search worker's,
+      // which is replaced at the next reset) leaves it untrustworthy.
+      location.reload();
+      return Promise.resolve(false);
+    }
+    for (const fn of this.restarted) fn();
+    if (this.controller.state !== 'error') showMessage('');
+    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay });
+  }
+
+  /** Calls `fn` at every restart. */
+  onRestart(fn) {
+    this.restarted.push(fn);
+  }
+
+  /** A trace layer ticked or unticked: fresh runs if they must keep another number of traces. */
+  tracesChanged() {
+    if (this.viewState.traceCount(this.config.keep_traces) !== this.kept) this.restart();
+    else this.controller.dispatch({ type: 'redraw' });
+  }
+
+  /** A playback button or key. */
+  playback(action) {
+    if (action === 'restart') this.restart(this.view.autoplay);
+    else if (action === 'newSeed') this.edit('seed', String(crypto.getRandomValues(new Uint32Array(1))[0]));
+    else if (action === 'toggle' && this.controller.state === 'error') this.restart(true);
+    else this.controller.dispatch({ type: action });
+  }
+}

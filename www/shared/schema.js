@@ -1,0 +1,54 @@
+// How the page reads the engine's schema: ONE function per kind of entry,
+// with the fallbacks for the fields the engine does not send yet. When the
+// engine sends a field, its value wins and nothing else changes.
+//
+// Fields the page reads from a parameter entry (schema().params[i]):
+//   key, kind, default, min, max, min_open, choices, allowed, help  (sent today)
+//   label          short human label           fallback: the key
+//   group          "game", or the searcher or part that declares it   fallback: "game"
+//   advanced       behind "More settings"      fallback: false
+//   choice_labels  labels for people, in the order of `choices`
+//                  (an object { choice: label } is read too)   fallback: none
+// and from the schema itself: groups [{ name, label }] (a group's label; fallback: its name).
+//
+// Pure module (no DOM), so Node tests can use it with the real engine's schema.
+
+/** The group of parameters that are not any searcher's. */
+export const GAME_GROUP = 'game';
+
+/**
+ * One parameter entry as the page uses it. `choiceLabel(c)` is the label of
+ * choice `c` for people: the engine's, else (for the searcher choices,
+ * which the registry names) the registry's label, else `c` itself.
+ */
+export function paramEntry(p, schema) {
+  const labels = new Map();
+  if (Array.isArray(p.choice_labels)) p.choices?.forEach((c, i) => p.choice_labels[i] && labels.set(c, p.choice_labels[i]));
+  else if (p.choice_labels && typeof p.choice_labels === 'object') for (const [c, l] of Object.entries(p.choice_labels)) labels.set(c, l);
+  else if (p.choices && schema?.searchers?.length && p.choices.every((c) => schema.searchers.some((s) => s.name === c))) {
+    for (const s of schema.searchers) labels.set(s.name, s.label);
+  }
+  return {
+    ...p,
+    label: p.label ?? p.key,
+    group: p.group ?? GAME_GROUP,
+    advanced: p.advanced ?? false,
+    choiceLabel: (c) => labels.get(c) ?? c,
+  };
+}
+
+/** Every parameter entry of the schema, in the schema's order. */
+export function paramEntries(schema) {
+  return schema.params.map((p) => paramEntry(p, schema));
+}
+
+/** The entry of parameter `key` (undefined if the schema has none). */
+export function paramByKey(schema, key) {
+  const p = schema.params.find((q) => q.key === key);
+  return p && paramEntry(p, schema);
+}
+
+/** A group's label for people. */
+export function groupLabel(schema, name) {
+  return schema.groups?.find((g) => g.name === name)?.label ?? name;
+}
