@@ -179,12 +179,7 @@ fn walked_by_rule(
 fn each_base_alone_is_scored_along_its_own_path() {
     use torus_search::analysis::bound::path_mean;
     use torus_search::game::belief::{Belief, BeliefState};
-    
-    
-    
 
-    
-    
     for (n, prior, sigma, cap) in [
         (16, PriorKind::Gaussian, 2.5, 5000),
         (13, PriorKind::Uniform, 0.0, 5000),

@@ -91,8 +91,7 @@ fn no_target(c: &Config) -> bool {
     c.target.is_none()
 }
 
-/// The game's parameters, in the order the schema lists them (the
-/// searchers' parameters come after `searcher`).
+/// The game's parameters, in the order the schema lists them.
 pub static FIELDS: &[Field] = &[
     Field {
         param: Param {

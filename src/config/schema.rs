@@ -79,20 +79,16 @@ impl ConfigParam {
     }
 }
 
-/// Every parameter, in the order the CLI's help, the URL and the JSON list
-/// them: the game's fields up to `searcher`, the searchers' parameters in
-/// registry order, then the rest of the fields.
+/// Every parameter, in the order the CLI's help, the URL, the JSON and the
+/// page's form list them: the game's fields, then the searchers'
+/// parameters in registry order.
 pub fn params() -> &'static [ConfigParam] {
     static ALL: OnceLock<Vec<ConfigParam>> = OnceLock::new();
     ALL.get_or_init(|| {
-        let split = FIELDS
+        FIELDS
             .iter()
-            .position(|f| f.param.key == "searcher")
-            .map_or(FIELDS.len(), |i| i + 1);
-        let fields = |r: std::ops::Range<usize>| FIELDS[r].iter().map(ConfigParam::Field);
-        fields(0..split)
+            .map(ConfigParam::Field)
             .chain(registry::params().into_iter().map(ConfigParam::Setting))
-            .chain(fields(split..FIELDS.len()))
             .collect()
     })
 }
@@ -188,8 +184,8 @@ pub struct ParamInfo {
     pub min_open: bool,
     /// The allowed names (choices only).
     pub choices: Option<Vec<&'static str>>,
-    /// Names for people of the choices, in their order (choices only; the
-    /// names themselves when the parameter gives none).
+    /// Names for people of the choices, in their order (choices that
+    /// give them only; `searcher`'s are the registry's labels).
     pub choice_labels: Option<Vec<&'static str>>,
     /// The allowed values in words, as error messages give them.
     pub allowed: String,
@@ -238,13 +234,7 @@ impl ParamInfo {
                 ParamKind::Choice(names) => Some(names()),
                 _ => None,
             },
-            choice_labels: match p.kind {
-                ParamKind::Choice(_) if !p.choice_labels.is_empty() => {
-                    Some(p.choice_labels.to_vec())
-                }
-                ParamKind::Choice(names) => Some(names()),
-                _ => None,
-            },
+            choice_labels: (!p.choice_labels.is_empty()).then(|| p.choice_labels.to_vec()),
             allowed: p.kind.allowed(),
             help: p.help,
         }

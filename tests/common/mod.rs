@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use std::collections::VecDeque;
-use torus_search::searchers::SearcherId;
+use torus_search::searchers::registry::SearcherId;
 
 /// The registered searcher called `name`.
 pub fn searcher(name: &str) -> SearcherId {

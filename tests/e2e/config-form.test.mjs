@@ -73,14 +73,33 @@ const BASES = [
   '?autoplay=0&n=15&seed=5&searcher=rw&target=3,4',
 ];
 
-test('schema entries: the engine\'s label, group, advanced and choice_labels win; else the fallbacks', () => {
+/** The order the form lists parameters in: the main settings, then the
+ * advanced ones; within each, by group in order of first appearance, and
+ * within a group in the schema's order. */
+function formOrder(schema) {
+  const out = [];
+  for (const advanced of [false, true]) {
+    const ps = schema.params.filter((p) => p.advanced === advanced);
+    const groups = [...new Set(ps.map((p) => p.group))];
+    for (const g of groups) out.push(...ps.filter((p) => p.group === g).map((p) => p.key));
+  }
+  return out;
+}
+
+test('schema entries: every parameter has the engine\'s label, group and advanced flag, and choices their labels', () => {
   const schema = engine.schema();
-  const n = paramEntry({ key: 'n', kind: 'int', help: 'h' }, schema);
-  assert.deepEqual([n.label, n.group, n.advanced, n.choiceLabel('x')], ['n', 'game', false, 'x']);
-  const full = paramEntry({ key: 'final', kind: 'choice', choices: ['visits', 'mean'], label: 'Final move', group: 'mcts', advanced: true, choice_labels: ['most picks', 'best mean'] }, schema);
-  assert.deepEqual([full.label, full.group, full.advanced, full.choiceLabel('visits'), full.choiceLabel('mean')], ['Final move', 'mcts', true, 'most picks', 'best mean']);
+  const groups = schema.groups.map((g) => g.name);
+  for (const e of paramEntries(schema)) {
+    assert.ok(typeof e.label === 'string' && e.label.length > 0, `${e.key}: a label`);
+    assert.ok(groups.includes(e.group), `${e.key}: group ${e.group} is one of the schema's groups`);
+    assert.equal(typeof e.advanced, 'boolean', `${e.key}: advanced`);
+    if (e.choice_labels) assert.equal(e.choice_labels.length, e.choices.length, `${e.key}: a label per choice`);
+    for (const c of e.choices ?? []) assert.ok(e.choiceLabel(c), `${e.key}: ${c} has a label`);
+  }
+  const final = paramEntries(schema).find((e) => e.key === 'final');
+  assert.equal(final.choiceLabel('visits'), 'most picks');
   assert.equal(paramEntry({ key: 'p', kind: 'choice', choices: ['a'], choice_labels: { a: 'A' } }, schema).choiceLabel('a'), 'A');
-  // The searcher choices are labelled by the registry until the engine labels them.
+  // The searcher choices are labelled by the registry.
   const searcher = paramEntries(schema).find((e) => e.key === 'searcher');
   for (const s of schema.searchers) assert.equal(searcher.choiceLabel(s.name), s.label);
 });
@@ -89,7 +108,7 @@ test('every parameter of the schema has exactly one generated control, by its ki
   const schema = engine.schema();
   await withApp('?autoplay=0', async (page) => {
     const fields = await readForm(page);
-    assert.deepEqual(fields.map((f) => f.key), schema.params.map((p) => p.key), 'one field per parameter, in the schema\'s order');
+    assert.deepEqual(fields.map((f) => f.key), formOrder(schema), 'one field per parameter, main settings then advanced, by group, in the schema\'s order');
     for (const e of paramEntries(schema)) {
       const f = fields.find((x) => x.key === e.key);
       const where = `${e.key} (${e.kind})`;
@@ -194,9 +213,11 @@ test('hidden controls are exactly the parameters that do not apply, and they are
       // The running config, through the engine, says which apply.
       const config = await page.evaluate(() => window.torusTest.runs()[0].config);
       const applies = new Set(engine.applicable(config));
+      // Advanced settings are folded away; open them to see every control.
+      await page.locator('#more-settings').evaluate((d) => { d.open = true; });
       const fields = await readForm(page);
       const hidden = fields.filter((f) => f.hidden).map((f) => f.key);
-      assert.deepEqual(hidden, schema.params.map((p) => p.key).filter((k) => !applies.has(k)), `${base}: hidden controls`);
+      assert.deepEqual(hidden.sort(), schema.params.map((p) => p.key).filter((k) => !applies.has(k)).sort(), `${base}: hidden controls`);
       for (const f of fields) {
         assert.equal(f.disabled, f.hidden, `${base}: ${f.key} is ${f.hidden ? 'hidden but enabled' : 'shown but disabled'}`);
         if (!f.hidden) assert.ok(await page.locator(`[id="${f.key}"]`).isVisible(), `${base}: ${f.key} is visible`);

@@ -48,6 +48,7 @@ export class ConfigForm {
   build(schema, box) {
     const groups = new Map(); // "main:GROUP" or "more:GROUP" -> its fieldset
     const more = document.createElement('details');
+    more.id = 'more-settings';
     more.className = 'more';
     const summary = document.createElement('summary');
     summary.textContent = 'More settings';

@@ -1,20 +1,17 @@
-// How the page reads the engine's schema: ONE function per kind of entry,
-// with the fallbacks for the fields the engine does not send yet. When the
-// engine sends a field, its value wins and nothing else changes.
+// How the page reads the engine's schema: one function per kind of entry.
 //
 // Fields the page reads from a parameter entry (schema().params[i]):
-//   key, kind, default, min, max, min_open, choices, allowed, help  (sent today)
-//   label          short human label           fallback: the key
-//   group          "game", or the searcher or part that declares it   fallback: "game"
-//   advanced       behind "More settings"      fallback: false
-//   choice_labels  labels for people, in the order of `choices`
-//                  (an object { choice: label } is read too)   fallback: none
-// and from the schema itself: groups [{ name, label }] (a group's label; fallback: its name).
+//   key, kind, default, min, max, min_open, choices, allowed, help
+//   label          short human label
+//   group          "game", or the searcher that declares it
+//   advanced       behind "More settings"
+//   choice_labels  labels for people, in the order of `choices`, where the
+//                  parameter gives them (the searcher's come from
+//                  schema.searchers; other choices show their names)
+// and from the schema itself: groups [{ name, label }].
 //
 // Pure module (no DOM), so Node tests can use it with the real engine's schema.
 
-/** The group of parameters that are not any searcher's. */
-export const GAME_GROUP = 'game';
 
 /**
  * One parameter entry as the page uses it. `choiceLabel(c)` is the label of
@@ -30,9 +27,9 @@ export function paramEntry(p, schema) {
   }
   return {
     ...p,
-    label: p.label ?? p.key,
-    group: p.group ?? GAME_GROUP,
-    advanced: p.advanced ?? false,
+    label: p.label,
+    group: p.group,
+    advanced: p.advanced,
     choiceLabel: (c) => labels.get(c) ?? c,
   };
 }
@@ -50,5 +47,5 @@ export function paramByKey(schema, key) {
 
 /** A group's label for people. */
 export function groupLabel(schema, name) {
-  return schema.groups?.find((g) => g.name === name)?.label ?? name;
+  return schema.groups.find((g) => g.name === name)?.label ?? name;
 }
