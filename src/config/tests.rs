@@ -156,10 +156,11 @@ fn url_parsing_keeps_good_values_and_defaults_bad_ones() {
         vec![("seed", "1".to_string())]
     );
     let rw = from_params([("searcher", "rw"), ("c", "3")]).0;
+    // Schema order: every game field (searcher, seed) before the searchers' parameters.
     let pairs = vec![
         ("searcher", "rw".into()),
-        ("c", "3".into()),
         ("seed", "1".into()),
+        ("c", "3".into()),
     ];
     assert_eq!(rw.params(false), pairs);
 }
