@@ -16,10 +16,12 @@ WASM := --target wasm32-unknown-unknown
 # figure is at 100 (`make bench BENCH_EXP_TRIALS=100`): hours on 2 cores, as
 # trapped MCTS episodes run to the step cap of 10 000.
 BENCH_EXP_TRIALS ?= 10
+# Minutes of `make soak` (`make test` runs a 30-second soak).
+SOAK_MINUTES ?= 10
 
 section = @printf '\n==== %s ====\n' "$(1)"
 
-.PHONY: help setup setup-browser build serve test bench dist clean figures fuzz \
+.PHONY: help setup setup-browser build serve test bench dist clean figures fuzz soak \
         _build _dist test-fmt test-clippy test-native test-wasm test-e2e
 
 help:
@@ -30,6 +32,7 @@ help:
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
+	@echo "make soak    the browser soak test for SOAK_MINUTES (default 10) minutes"
 	@echo "make figures every experiment's figure into docs/figures/ (about 20 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
@@ -83,8 +86,13 @@ test-wasm:
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
 	node --test --test-concurrency=1 tests/e2e/*.test.mjs
-	$(call section,soak: 2 minutes of varied configurations in one page (tests/e2e/soak.mjs))
-	node tests/e2e/soak.mjs --minutes 2
+	$(call section,soak: 30 s of varied configurations in one page (tests/e2e/soak.mjs; longer: make soak))
+	node tests/e2e/soak.mjs --minutes 0.5
+
+# The long soak (README, "Reliability"): `make soak SOAK_MINUTES=60`.
+soak: build setup-browser
+	$(call section,soak: $(SOAK_MINUTES) minutes of varied configurations in one page (tests/e2e/soak.mjs))
+	node tests/e2e/soak.mjs --minutes $(SOAK_MINUTES)
 
 # The property tests with ten times the cases of `make test` and a seed
 # from the clock (printed by fast-check on a failure, to replay it).
