@@ -109,7 +109,9 @@ else
   # registry no longer serves, so cargo resolves fresh compatible versions.
   # Only the two programs used here, and no TLS (the test runner talks plain
   # HTTP to the local chromedriver): 11 crates fewer, ring's C code among them.
-  cargo install wasm-bindgen-cli --version "$want" --force \
+  # opt-level 1: about a fifth less compile work; the CLI then spends about
+  # 0.4 s more per test binary (docs/testing.md, "Cold set-up time").
+  CARGO_PROFILE_RELEASE_OPT_LEVEL=1 cargo install wasm-bindgen-cli --version "$want" --force \
     --no-default-features --bin wasm-bindgen --bin wasm-bindgen-test-runner
   have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is ~/.cargo/bin on PATH?)" >&2; exit 1; }
 fi
