@@ -4,13 +4,19 @@ SHELL := bash
 .SHELLFLAGS := -euo pipefail -c
 .DEFAULT_GOAL := help
 
-export PATH := $(HOME)/.cargo/bin:$(PATH)
+# Where cargo installs wasm-bindgen-cli (scripts/setup.sh).
+export PATH := $(or $(CARGO_HOME),$(HOME)/.cargo)/bin:$(PATH)
 # wasm-bindgen-test-runner: headless Chromium via Debian's chromedriver
 # (capabilities in webdriver.json), and room for a slow cold start.
 export CHROMEDRIVER ?= /usr/bin/chromedriver
 export WASM_BINDGEN_TEST_TIMEOUT ?= 120
 # In CI, Cargo.lock must already be up to date.
 LOCKED := $(if $(filter true 1,$(CI)),--locked,)
+# A CI build is cold and never rebuilt: incremental state would only cost
+# time and disk there.
+ifneq ($(filter true 1,$(CI)),)
+export CARGO_INCREMENTAL := 0
+endif
 WASM := --target wasm32-unknown-unknown
 # Trials per point of sigma-sweep in the experiments benchmark. The issue's
 # figure is at 100 (`make bench BENCH_EXP_TRIALS=100`): hours on 2 cores, as

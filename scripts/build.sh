@@ -4,7 +4,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-[[ -x "$HOME/.cargo/bin/wasm-bindgen" && ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && export PATH="$HOME/.cargo/bin:$PATH"
+cargo_bin="${CARGO_HOME:-$HOME/.cargo}/bin"
+[[ -x "$cargo_bin/wasm-bindgen" && ":$PATH:" != *":$cargo_bin:"* ]] && export PATH="$cargo_bin:$PATH"
 
 cargo build --lib --release --target wasm32-unknown-unknown
 wasm-bindgen --target web --out-dir www/pkg \

@@ -26,10 +26,12 @@ say() { printf '[setup] %s\n' "$*"; }
 # killed: stopping apt-get half way would leave dpkg broken.
 logdir="$(mktemp -d)"
 declare -A bg_pid=()
+declare -A bg_start=()
 start_bg() {
   local name=$1; shift
   "$@" > "$logdir/$name.log" 2>&1 &
   bg_pid[$name]=$!
+  bg_start[$name]=$SECONDS
 }
 wait_bg() {
   local name=$1 rc=0
@@ -38,6 +40,7 @@ wait_bg() {
   unset "bg_pid[$name]"
   sed "s/^/[setup] $name: /" "$logdir/$name.log"
   if [[ $rc != 0 ]]; then echo "error: $name failed (exit $rc)" >&2; exit "$rc"; fi
+  say "$name done in $((SECONDS - bg_start[$name])) s (in the background)"
 }
 cleanup() {
   local pid
@@ -96,9 +99,10 @@ have_cli() {
     command -v wasm-bindgen-test-runner >/dev/null 2>&1 &&
     [[ "$(wasm-bindgen --version 2>/dev/null)" == "wasm-bindgen $want" ]]
 }
+cargo_bin="${CARGO_HOME:-$HOME/.cargo}/bin"
 if ! have_cli; then
-  if [[ ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && [[ -x "$HOME/.cargo/bin/wasm-bindgen" ]]; then
-    export PATH="$HOME/.cargo/bin:$PATH"
+  if [[ ":$PATH:" != *":$cargo_bin:"* ]] && [[ -x "$cargo_bin/wasm-bindgen" ]]; then
+    export PATH="$cargo_bin:$PATH"
   fi
 fi
 if have_cli; then
@@ -111,9 +115,12 @@ else
   # HTTP to the local chromedriver): 11 crates fewer, ring's C code among them.
   # opt-level 1: about a fifth less compile work; the CLI then spends about
   # 0.4 s more per test binary (docs/testing.md, "Cold set-up time").
+  t0=$SECONDS
   CARGO_PROFILE_RELEASE_OPT_LEVEL=1 cargo install wasm-bindgen-cli --version "$want" --force \
     --no-default-features --bin wasm-bindgen --bin wasm-bindgen-test-runner
-  have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is ~/.cargo/bin on PATH?)" >&2; exit 1; }
+  [[ ":$PATH:" == *":$cargo_bin:"* ]] || export PATH="$cargo_bin:$PATH"
+  have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is $cargo_bin on PATH?)" >&2; exit 1; }
+  say "wasm-bindgen-cli installed in $((SECONDS - t0)) s"
 fi
 
 wait_bg npm
