@@ -28,7 +28,7 @@ SOAK_MINUTES ?= 10
 section = @printf '\n==== %s ====\n' "$(1)"
 
 .PHONY: help setup setup-browser build serve test bench dist clean figures fuzz soak \
-        _build _dist test-fmt test-workflows test-clippy test-native test-wasm test-e2e
+        _build _dist _test-wasm-and-build test-fmt test-workflows test-clippy test-native test-wasm test-e2e
 
 help:
 	@echo "make setup   install the wasm32 target, pinned wasm-bindgen-cli, npm packages"
@@ -66,8 +66,7 @@ test: setup-browser
 	@$(MAKE) --no-print-directory test-workflows
 	@$(MAKE) --no-print-directory test-clippy
 	@$(MAKE) --no-print-directory test-native
-	@$(MAKE) --no-print-directory test-wasm
-	@$(MAKE) --no-print-directory _build
+	@$(MAKE) --no-print-directory _test-wasm-and-build
 	@$(MAKE) --no-print-directory _dist
 	@$(MAKE) --no-print-directory test-e2e
 
@@ -96,6 +95,21 @@ test-native:
 test-wasm:
 	$(call section,cargo test (wasm32: Node.js and headless Chromium))
 	cargo test $(LOCKED) $(WASM) --tests
+
+# In `make test`, the page's release build (scripts/build.sh: mostly one core,
+# LTO into one codegen unit) runs while the wasm tests run (mostly waiting on
+# Node and Chromium); its output follows theirs. Cargo locks the test and the
+# release build directories apart, so neither waits for the other.
+_test-wasm-and-build:
+	$(call section,cargo test (wasm32: Node.js and headless Chromium; the page's release build alongside))
+	cargo test $(LOCKED) $(WASM) --tests --no-run
+	@mkdir -p target; scripts/build.sh > target/build.log 2>&1 & build=$$!; \
+	  test_rc=0; build_rc=0; \
+	  cargo test $(LOCKED) $(WASM) --tests || test_rc=$$?; \
+	  wait $$build || build_rc=$$?; \
+	  printf '\n==== %s ====\n' "build wasm package (ran alongside the wasm tests)"; \
+	  cat target/build.log; \
+	  exit $$(( test_rc ? test_rc : build_rc ))
 
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))

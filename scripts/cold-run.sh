@@ -29,13 +29,13 @@ rc=${PIPESTATUS[0]}
 set -e
 total=$(($(date +%s) - start))
 
-# A step runs from its "==== name ====" header to the next one; setup prints
-# its own parts ("[setup] ... in N s").
+# A step runs from its "==== name ====" header to the next one; setup and
+# build print their own parts ("[setup] ... in N s", "[build] done in N s").
 awk -v total="$total" -v start="$start" '
   function flush(t) { if (name != "") printf "| %s | %d s |\n%s", name, t - since, parts; parts = "" }
   BEGIN { name = "setup (make setup-browser)"; since = start; print "| step | time |"; print "| --- | --- |" }
   / ==== .* ====$/ { flush($1); name = $0; sub(/^[0-9]+ ==== /, "", name); sub(/ ====$/, "", name); since = $1; next }
-  / \[setup\] .* in [0-9]+ s/ { part = $0; sub(/^[0-9]+ \[setup\] /, "", part); parts = parts "| - " part " |  |\n" }
+  / \[(setup|build)\] .* in [0-9]+ s/ { part = $0; sub(/^[0-9]+ /, "", part); parts = parts "| - " part " |  |\n" }
   { last = $1 }
   END { flush(last); printf "| **total** | **%d s (%d min %d s)** |\n", total, total / 60, total % 60 }
 ' "$log"
