@@ -34,7 +34,7 @@ help:
 	@echo "make setup   install the wasm32 target, pinned wasm-bindgen-cli, npm packages"
 	@echo "make build   build www/pkg (wasm-bindgen --target web) and www/vendor"
 	@echo "make serve   setup + build, then serve the page at http://127.0.0.1:8080/"
-	@echo "make test    fmt, clippy, native + wasm (Node, Chromium) tests, browser e2e"
+	@echo "make test    fmt, actionlint, clippy, native + wasm (Node, Chromium) tests, browser e2e, 30 s soak"
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
