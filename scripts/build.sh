@@ -4,8 +4,10 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-[[ -x "$HOME/.cargo/bin/wasm-bindgen" && ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && export PATH="$HOME/.cargo/bin:$PATH"
+cargo_bin="${CARGO_HOME:-$HOME/.cargo}/bin"
+[[ -x "$cargo_bin/wasm-bindgen" && ":$PATH:" != *":$cargo_bin:"* ]] && export PATH="$cargo_bin:$PATH"
 
+start=$SECONDS
 cargo build --lib --release --target wasm32-unknown-unknown
 wasm-bindgen --target web --out-dir www/pkg \
   target/wasm32-unknown-unknown/release/torus_search.wasm
@@ -28,3 +30,4 @@ vendor node_modules/@observablehq/plot/dist/plot.umd.min.js www/vendor/plot.umd.
 vendor node_modules/@observablehq/plot/LICENSE            www/vendor/plot.LICENSE
 
 echo "[build] www/pkg: $(du -sh www/pkg/torus_search_bg.wasm | cut -f1) wasm; www/vendor: $(ls www/vendor | tr '\n' ' ')"
+echo "[build] done in $((SECONDS - start)) s"

