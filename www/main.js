@@ -57,7 +57,7 @@ async function boot() {
   });
   $('exp-from-live').addEventListener('click', () => experiments.useLiveConfig(engine.configParams(live.config, false)));
 
-  installTestHook({ controller, engine, batch, experiments, showView: (v) => views.show(v) });
+  installTestHook({ controller, engine, batch, experiments, boards, showView: (v) => views.show(v) });
   controller.dispatch({ type: 'view', view: viewState.frameView() });
   views.show(start.page);
   live.change({ view: start.view, autoplay: autoplay && start.page === 'live', note: start.messages.join('\n') }); // (the Experiments view needs the cores)

@@ -143,7 +143,7 @@ export class Boards {
       showTarget: found || opts.reveal,
       pulses: m.pulse.rings(run, found, now, still),
       rv: run.config.rv,
-      trails: m.trails.visible({ live: live && running, still }),
+      trails: running ? m.trails.visible({ live, still }) : [],
       practice: opts.practice && running ? m.trails.practice() : -1,
       intent: opts.intent && running ? run.intent : null,
       decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,

@@ -67,12 +67,14 @@ export function bindDisplay({ engine, schema, controller, boards, viewState, pai
     const { pending, animating } = boards.draw(runs, requested, opts, { preview: painter.preview, now: ts, live: state === 'running', still: reducedMotion() });
     if (pending || animating) controller.dispatch({ type: 'animate' });
     for (const m of boards.drawnMarks(0)) drawn.add(m);
+    // The board's description for screen readers changes at most once a second.
     if (ts - describedTs >= (state === 'running' ? DESCRIBE_MS : 0)) {
       describedTs = ts;
-      setText('view-desc', describeRun(runs[0]));
+      setText('board-desc', describeRun(runs[0]));
     }
     if (state === 'running' && ts - panelsTs < PANEL_MS) return;
     panelsTs = ts;
+    setText('view-desc', describeRun(runs[0]));
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);
     // A plan made in slices can be stepped a slice at a time.

@@ -35,6 +35,8 @@ export class Renderer {
     this.tiling = false;
     this.dpr = 1;
     this.drawn = new Set(); // marks drawn by the last frame (MARKS keys)
+    this.drawnLayers = []; // layer names drawn by the last frame
+    this.at = null; // where the last frame drew the searcher, in cell units
     this.uploads = 0; // putImageData calls so far (the benchmark reads it)
     this.layout();
   }
@@ -134,6 +136,8 @@ export class Renderer {
       this.layout();
     }
     this.drawn = new Set();
+    this.drawnLayers = [];
+    this.at = null;
     const ctx = this.ctx;
     const cs = this.cell;
     const gridPx = n * cs;
@@ -150,10 +154,12 @@ export class Renderer {
     scene.layers.forEach((layer, li) => {
       if (!layer?.rgba || layer.rgba.length !== 4 * n * n) return;
       blit(this.upload(li, layer, n).canvas, layer.flat ? FLAT_ALPHA : 1);
+      this.drawnLayers.push(layer.layer ?? 'preview');
     });
     if (scene.searched?.rgba?.length === 4 * n * n) {
       ctx.drawImage(this.hatched(scene.searched, n, gridPx, tiles), 0, 0);
       this.drawn.add('searched');
+      this.drawnLayers.push(scene.searched.layer);
     }
 
     // Everything in cell units from here on, translated per tile.
@@ -285,7 +291,8 @@ export class Renderer {
     const ctx = this.ctx;
     const n = scene.n;
     const [x, y] = scene.at ?? cellXY(scene.position, n).map((v) => v + 0.5);
-    const r = Math.max(0.32, 5 * px);
+    this.at = [x, y];
+    const r = Math.max(0.32, 6 * px);
     const vision = scene.rv > 0 && scene.rv * this.cell >= 6 * this.dpr;
     const reach = Math.max(r + 5 * px, vision ? scene.rv + 0.5 : 0, 2);
     ctx.setTransform(this.cell, 0, 0, this.cell, this.origin, this.origin);

@@ -120,7 +120,7 @@ export function drawTrail(ctx, cells, n, alpha, px) {
   if (len < 2) return;
   const chunks = Math.min(CHUNKS, len - 1);
   ctx.strokeStyle = INK.rollout;
-  const wide = Math.max(1.6 * px, Math.min(0.18, 3 * px));
+  const wide = Math.max(1.4 * px, Math.min(0.15, 2.4 * px));
   for (let j = 0; j < chunks; j++) {
     const a = Math.floor((j * (len - 1)) / chunks);
     const b = Math.floor(((j + 1) * (len - 1)) / chunks);

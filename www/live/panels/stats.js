@@ -72,6 +72,9 @@ export function updateStats(runs, meter, { reveal }) {
     banner.classList.toggle('capped', r.frame.status === 'capped');
     banner.classList.toggle('planning', !!r.frame.planning && !r.frame.planning.per_move);
     setText(banner, line);
+    // Over the half of the board away from the target, so the found moment shows.
+    const row = Math.floor(r.target / r.n);
+    board.querySelector('.result').dataset.at = row < r.n / 2 ? 'bottom' : 'top';
   });
   if (runs.length > 1) updateScoreboard(runs, reveal);
 }
