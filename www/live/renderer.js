@@ -31,6 +31,7 @@ export class Renderer {
     this.offscreens = []; // one N×N canvas per layer slot
     this.pathLayer = new PathLayer();
     this.hatch = { canvas: null, sig: '' };
+    this.trailCache = new Map(); // trail cells (by identity) -> { sig, canvas }
     this.n = 0;
     this.tiling = false;
     this.dpr = 1;
@@ -173,7 +174,7 @@ export class Renderer {
     }
     ctx.lineCap = 'round';
     ctx.lineJoin = 'round';
-    this.drawTrails(scene, eachTile, px);
+    this.drawTrails(scene, px);
     const pending = this.drawPath(scene, gridPx, tiles);
     this.drawIntent(scene, eachTile, px);
     this.drawMarks(scene, eachTile, px);
@@ -203,13 +204,44 @@ export class Renderer {
     return h.canvas;
   }
 
-  drawTrails(scene, eachTile, px) {
-    const trails = scene.trails || [];
-    if (!trails.some((t) => t.cells.length > 1)) return;
+  /**
+   * The rollout trails. Each is rastered once into a view-sized canvas of
+   * its own (a trail is kept on the board for several hundred ms) and
+   * blitted at its current strength: stroking thousands of segments again
+   * every frame cost more than the frame had without a GPU.
+   */
+  drawTrails(scene, px) {
+    const trails = (scene.trails || []).filter((t) => t.cells.length > 1);
+    const cache = this.trailCache;
+    const sig = [this.canvas.width, scene.n, this.origin, this.tiling].join('|');
+    for (const key of cache.keys()) if (!trails.some((t) => t.cells === key)) cache.delete(key);
+    if (!trails.length) return;
     this.drawn.add('rollout');
-    eachTile(() => {
-      for (const t of trails) drawTrail(this.ctx, t.cells, scene.n, t.alpha, px);
-    });
+    const ctx = this.ctx;
+    ctx.save();
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    for (const t of trails) {
+      let c = cache.get(t.cells);
+      if (!c || c.sig !== sig) {
+        c = { sig, canvas: c?.canvas ?? document.createElement('canvas') };
+        c.canvas.width = this.canvas.width;
+        c.canvas.height = this.canvas.height;
+        const tc = c.canvas.getContext('2d');
+        tc.lineCap = 'round';
+        tc.lineJoin = 'round';
+        const gridPx = scene.n * this.cell;
+        if (!this.tiling) {
+          tc.beginPath();
+          tc.rect(this.origin, this.origin, gridPx, gridPx);
+          tc.clip();
+        }
+        forEachTile(tc, this.cell, this.origin, gridPx, this.tiling ? [-1, 0, 1] : [0], () => drawTrail(tc, t.cells, scene.n, 1, px));
+        cache.set(t.cells, c);
+      }
+      ctx.globalAlpha = t.alpha;
+      ctx.drawImage(c.canvas, 0, 0);
+    }
+    ctx.restore();
   }
 
   /** The searcher's path, with a dark halo so it reads on any heat layer (glowing once found). */

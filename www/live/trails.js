@@ -72,7 +72,8 @@ export class TraceKeeper {
     this.lastNow = now;
     const entry = (cells) => ({ key: traceKey(cells), cells: decimate(cells), born: this.clock });
     if (!live) {
-      this.held = traces.map((t) => entry(t));
+      // The same trails keep their entries (the board keeps their drawings).
+      this.held = traces.map((t) => this.held.find((h) => h.key === traceKey(t)) ?? entry(t));
       this.shownPractice = practice;
       return;
     }
