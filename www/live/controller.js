@@ -46,7 +46,7 @@ export class Controller {
     this.view = { layers: [], traces: false };
     this.state = 'idle';
     this.speed = 10;
-    this.rafId = 0;
+    this.scheduled = false; // an animation frame is asked for (a flag: a held or shimmed rAF may return no id)
     this.dirty = true;
     this.wantFrame = false;
     this.inflight = false;
@@ -263,12 +263,14 @@ export class Controller {
   }
 
   schedule() {
-    if (!this.rafId && this.raf) this.rafId = this.raf(this.tick);
+    if (this.scheduled || !this.raf) return;
+    this.scheduled = true;
+    this.raf(this.tick);
   }
 
   /** One animation frame: ask for the next frame of the search, and draw what has arrived. */
   tick(ts) {
-    this.rafId = 0;
+    this.scheduled = false;
     const running = this.state === 'running' || this.stepping > 0;
     if ((running || this.wantFrame) && !this.inflight && this.runs.length) {
       this.wantFrame = false;

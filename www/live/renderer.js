@@ -19,7 +19,7 @@ export { COLORS } from './marks.js';
 const MOVE_NAMES = ['Up', 'Right', 'Down', 'Left'];
 const MOVE_DELTAS = [[0, -1], [1, 0], [0, 1], [-1, 0]];
 /** A heat layer whose nonzero cells are all equal (a uniform prior) is drawn at this opacity, not at full brightness. */
-export const FLAT_ALPHA = 0.35;
+export const FLAT_ALPHA = 0.25;
 
 export class Renderer {
   /**
