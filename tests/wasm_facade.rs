@@ -275,8 +275,14 @@ fn walkers_race_and_time_budgets() {
             .filter_map(|v| v.as_string())
             .collect()
     };
-    assert_eq!(names(0), ["prior", "plan", "posterior", "searched", "visits"]);
-    assert_eq!(names(1), ["prior", "plan", "posterior", "searched", "visits", "walker"]);
+    assert_eq!(
+        names(0),
+        ["prior", "plan", "posterior", "searched", "visits"]
+    );
+    assert_eq!(
+        names(1),
+        ["prior", "plan", "posterior", "searched", "visits", "walker"]
+    );
     r.advance(35.0);
     let f = frames(
         &mut r,
