@@ -5,7 +5,8 @@
 //   draw_ms_per_frame_*   main-thread time per drawn frame: `boards` (the whole
 //                         board: scene, trails kept, rendering) and its parts
 //                         (Renderer methods: heat layer, trails, path, marks,
-//                         searcher, grid); n256_trails also draws the rollouts
+//                         searcher, grid); n256_visits_trails draws the MCTS
+//                         visits (recoloured as the search runs) and the rollouts
 //   put_image_data_*      putImageData calls on the page's thread per drawn frame,
 //                         and the layers whose pixels changed (one call each)
 //   longest_task_ms_n256  the longest main-thread task meanwhile (PerformanceObserver 'longtask')
@@ -110,28 +111,32 @@ function perFrame(a, b) {
   return { frames: b.frames - a.frames, ms, puts: +((b.puts - a.puts) / frames).toFixed(3), changed_layers: +((b.uploads - a.uploads) / frames).toFixed(3) };
 }
 
-/** Waits for the page's runs, unticks the layers `untick`, and plays at full speed. */
-async function playAtFullSpeed(page, untick) {
+/** Waits for the page's runs, unticks the layers `untick`, ticks `tick` (a heat chip), and plays at full speed. */
+async function playAtFullSpeed(page, untick, tick = []) {
   await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
-  await page.evaluate(async (ids) => {
+  await page.evaluate(async ([ids, on]) => {
     for (const id of ids) {
       const el = document.getElementById(id);
       if (el.checked) el.click();
+    }
+    for (const id of on) {
+      const el = document.getElementById(id);
+      if (!el.checked) el.click();
     }
     const t = window.torusTest;
     // Unticking a trace layer restarts the run (traces are kept from the start).
     await t.ready();
     t.dispatch({ type: 'speed', speed: 'max' });
     t.dispatch({ type: 'play' });
-  }, untick);
+  }, [untick, tick]);
 }
 
-async function measurePage(context, url, { untick = [] } = {}) {
+async function measurePage(context, url, { untick = [], tick = [] } = {}) {
   const { page } = await openPage(context, url);
   try {
     await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
     await instrumentDrawing(page);
-    await playAtFullSpeed(page, untick);
+    await playAtFullSpeed(page, untick, tick);
     await page.waitForTimeout(1000); // warm up
     const sample = () => page.evaluate(() => {
       const t = window.torusTest;
@@ -313,8 +318,8 @@ try {
   await browser.context.addInitScript(PROBE);
   result.chromium = browser.context.browser()?.version() ?? null;
   // N=256: the prior heat layer, the path and the gliding searcher (the
-  // default picture), without and with the rollout trails; N=100: a long
-  // episode at full speed. Each is measured `repeat`
+  // default picture), then the visits (a layer that changes) with the
+  // rollout trails; N=100: a long episode at full speed. Each is measured `repeat`
   // times on fresh pages, and each measurement's loop window is also timed
   // in one wasm call in the search worker and (--native) natively, right
   // after it: this machine's speed drifts by ±10% over a minute, so ratios
@@ -323,14 +328,14 @@ try {
   result.url_n256 = q256;
   const noTraces = ['layer-rollouts', 'layer-practice'];
   const configs = [
-    ['n256', q256, noTraces],
-    ['n256_trails', q256, []],
-    ['n100_sigma15', '?n=100&sigma=15&seed=1', noTraces],
+    ['n256', q256, noTraces, []],
+    ['n256_visits_trails', q256, [], ['layer-visits']],
+    ['n100_sigma15', '?n=100&sigma=15&seed=1', noTraces, []],
   ];
-  for (const [tag, query, untick] of configs) {
+  for (const [tag, query, untick, tick] of configs) {
     const runs = [];
     for (let k = 0; k < repeat; k++) {
-      const m = await measurePage(browser.context, `${server.url}${query}`, { untick });
+      const m = await measurePage(browser.context, `${server.url}${query}`, { untick, tick });
       m.wasm = await measureWindow(browser.context, `${server.url}?autoplay=0`, m);
       m.native = wantNative ? nativeWindow(m) : null;
       runs.push(m);
