@@ -1,10 +1,11 @@
-// What the live view shows of the controller's events: fresh runs set up
-// the boards, the heat switch and the chart; each frame draws the boards
+// What the live view shows of the controller's events (with the found
+// card's next steps and the first-visit tour): fresh runs set up the
+// boards, the heat switch and the chart; each frame draws the boards
 // (asking for another animation frame while something on them moves) and,
 // at most every PANEL_MS while running, the text panels, the legend, the
-// explanation and the chart; the board's text description at most once a
-// second; the state shows in the badge and the play button; an error, in
-// the message.
+// explanation, the line under the board and the chart; the board's
+// description for screen readers at most once a second; the state shows in
+// the badge and the play button; an error, in the message.
 
 import { describeError } from '../shared/engine.js';
 import { $, setText, showMessage } from '../shared/ui.js';
@@ -14,6 +15,8 @@ import { updateExplanation } from './panels/explain.js';
 import { Legend } from './panels/legend.js';
 import { StepsChart } from './steps-chart.js';
 import { reducedMotion } from './motion.js';
+import { bindFound } from './panels/found.js';
+import { Tour } from './tour.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
@@ -24,9 +27,12 @@ const DESCRIBE_MS = 1000;
  * @param {object} o
  * @param {object} o.engine, o.schema   the wasm module (palettes) and its schema (layers)
  * @param {object} o.controller   the playback state machine (its events)
+ * @param {object} o.live, o.races   the LiveState and the race options (the next steps after the end)
  * @param {object} o.boards, o.viewState, o.painter, o.controls   what it draws and updates
  */
-export function bindDisplay({ engine, schema, controller, boards, viewState, painter, controls }) {
+export function bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls }) {
+  bindFound({ controller, live, races });
+  new Tour({ controller, boards });
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
   const drawn = new Set(); // marks drawn since the last legend update
