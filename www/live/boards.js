@@ -178,6 +178,8 @@ export class Boards {
     const r = this.renderers[i];
     const f = this.motion[i].glide.shown;
     const [x, y] = pointAt(run.pathView(), run.pathLen, Math.max(0, f), run.n);
-    return r.clientPoint(x, y);
+    // Mid-wrap, the copy on the grid.
+    const wrap = (v) => ((v % run.n) + run.n) % run.n;
+    return r.clientPoint(wrap(x), wrap(y));
   }
 }

@@ -32,7 +32,6 @@ const DESCRIBE_MS = 1000;
  */
 export function bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls }) {
   bindFound({ controller, live, races });
-  new Tour({ controller, boards });
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
   const drawn = new Set(); // marks drawn since the last legend update
@@ -92,4 +91,6 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     const known = (r) => r.frame.status === 'found' || opts.reveal;
     chart.push(runTime, runs.map((r) => r.frame.steps), runs.map((r) => (known(r) ? r.optimal : null)), state !== 'running');
   });
+  // After the drawing above: the tour points at where this frame drew the searcher.
+  new Tour({ controller, boards });
 }

@@ -177,8 +177,10 @@ export class Renderer {
     this.drawTrails(scene, px);
     const pending = this.drawPath(scene, gridPx, tiles);
     this.drawIntent(scene, eachTile, px);
+    // Once found, the target (and its pulse) goes over the searcher beside it.
+    if (scene.highlight) this.drawSearcher(scene, px);
     this.drawMarks(scene, eachTile, px);
-    this.drawSearcher(scene, px);
+    if (!scene.highlight) this.drawSearcher(scene, px);
     ctx.restore();
     this.drawFrame(scene, gridPx);
     return pending;
