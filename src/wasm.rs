@@ -583,8 +583,9 @@ impl RaceHandle {
     }
 
     /// What stays fixed for each run: `[{ label, config, searcher, deliberates,
-    /// help, n, start, target, optimal, lower_bound }]`; `lower_bound` is
-    /// the bound on any searcher's mean steps (`bound::lower_bound_capped`).
+    /// help, n, start, target, optimal, lower_bound, layer_names }]`; `lower_bound`
+    /// is the bound on any searcher's mean steps (`bound::lower_bound_capped`),
+    /// `layer_names` the names of the layers the run can draw.
     ///
     /// # Errors
     /// None in practice: every run's config was validated by the constructor.
@@ -601,6 +602,7 @@ impl RaceHandle {
             target: u32,
             optimal: u32,
             lower_bound: f64,
+            layer_names: Vec<&'static str>,
         }
         let runs: Vec<Run> = self
             .race
@@ -620,6 +622,7 @@ impl RaceHandle {
                     optimal: r.optimal(),
                     lower_bound: crate::analysis::bound::lower_bound_capped(r.config())
                         .map_err(err)?,
+                    layer_names: view::layers_of(r),
                 })
             })
             .collect::<Result<_, JsError>>()?;

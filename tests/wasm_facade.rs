@@ -268,6 +268,21 @@ fn walkers_race_and_time_budgets() {
     let info = js_sys::Array::from(&r.describe().map_err(JsValue::from).unwrap());
     assert_eq!(num(&info.get(0), "target"), num(&info.get(1), "target"));
     assert_eq!(get(&info.get(1), "deliberates").as_bool(), Some(false));
+    // Each run names the layers it can draw: MCTS has visits, NSARW its walker counts too.
+    let names = |i: u32| -> Vec<String> {
+        js_sys::Array::from(&get(&info.get(i), "layer_names"))
+            .iter()
+            .filter_map(|v| v.as_string())
+            .collect()
+    };
+    assert_eq!(
+        names(0),
+        ["prior", "plan", "posterior", "searched", "visits"]
+    );
+    assert_eq!(
+        names(1),
+        ["prior", "plan", "posterior", "searched", "visits", "walker"]
+    );
     r.advance(35.0);
     let f = frames(
         &mut r,

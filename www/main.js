@@ -5,7 +5,7 @@ import { loadEngine, engineModule, schema as engineSchema } from './shared/engin
 import { readPage, raceOptions } from './shared/url-state.js';
 import { PageViews } from './shared/views.js';
 import { installTestHook } from './shared/test-hook.js';
-import { $, setText, showMessage, showFatal } from './shared/ui.js';
+import { $, setText, showFatal } from './shared/ui.js';
 import { Controller } from './live/controller.js';
 import { SearchSession } from './live/search-session.js';
 import { LiveState } from './live/live-state.js';
@@ -18,6 +18,7 @@ import { gridInput, clearPainting } from './live/grid-input.js';
 import { bindDisplay } from './live/display.js';
 import { bindReplay } from './live/replay.js';
 import { bindPresets } from './live/presets.js';
+import { autoplayAllowed } from './live/motion.js';
 import { BatchPanel } from './workers/batch.js';
 import { ExperimentsView } from './experiments/view.js';
 
@@ -27,20 +28,17 @@ async function boot() {
   const schema = engineSchema();
   const races = raceOptions(engine, schema);
   const start = readPage(engine, schema, location.search, races);
+  const autoplay = start.view.autoplay && autoplayAllowed(location.search); // (reduced motion: a Play button)
   setText('version', `v${engine.version()}`);
   const controller = new Controller({ session: new SearchSession(engineModule()) });
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });
   const viewState = new ViewState(schema, { redraw: () => controller.dispatch({ type: 'view', view: viewState.frameView() }), traces: () => live.tracesChanged() });
-  const controls = new Controls({
-    races,
-    onRace: (race) => live.change({ view: { race } }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }),
-    onPlayback: (action) => live.playback(action),
-  });
-  const views = new PageViews({ page: start.page, controller, query: { live: () => live.query(), experiments: () => experiments.query() }, autoplay: start.view.autoplay });
+  const controls = new Controls({ races, onRace: (race) => live.change({ view: { race } }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
+  const views = new PageViews({ page: start.page, controller, query: { live: () => live.query(), experiments: () => experiments.query() }, autoplay });
   const live = new LiveState({ engine, schema, races, controller, painter, form, controls, viewState, config: start.config, view: start.view, onUrl: () => views.updateUrl() });
-  const boards = new Boards(gridInput({ form, painter, live, controller }));
-  bindDisplay({ engine, schema, controller, boards, viewState, painter, controls });
+  const boards = new Boards(gridInput({ form, painter, live, controller, boards: () => boards, revealed: () => viewState.options().reveal }));
+  bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls });
   bindReplay({ engine, schema, races, controller, live, boards, link: () => (views.updateUrl(), location.href) });
   bindPresets({ engine, live, viewState });
   const batch = new BatchPanel(engine, schema, () => live.config);
@@ -51,10 +49,10 @@ async function boot() {
   });
   $('exp-from-live').addEventListener('click', () => experiments.useLiveConfig(engine.configParams(live.config, false)));
 
-  installTestHook({ controller, engine, batch, experiments, showView: (v) => views.show(v) });
+  installTestHook({ controller, engine, batch, experiments, boards, showView: (v) => views.show(v) });
   controller.dispatch({ type: 'view', view: viewState.frameView() });
   views.show(start.page);
-  live.change({ view: start.view, autoplay: start.view.autoplay && start.page === 'live', note: start.messages.join('\n') }); // (the Experiments view needs the cores)
+  live.change({ view: start.view, autoplay: autoplay && start.page === 'live', note: start.messages.join('\n') }); // (the Experiments view needs the cores)
 }
 
 boot();

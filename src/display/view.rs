@@ -45,28 +45,43 @@ pub struct LayerInfo {
 }
 
 /// Every layer, bottom to top as a display stacks them.
+const ALL_LAYERS: [Layer; 6] = [
+    Layer::Prior,
+    Layer::Plan,
+    Layer::Posterior,
+    Layer::Searched,
+    Layer::Visits,
+    Layer::Walker,
+];
+
+/// Every layer, bottom to top as a display stacks them, as data.
 pub fn layers() -> Vec<LayerInfo> {
-    [
-        Layer::Prior,
-        Layer::Plan,
-        Layer::Posterior,
-        Layer::Searched,
-        Layer::Visits,
-        Layer::Walker,
-    ]
-    .into_iter()
-    .map(|l| {
-        let (palette, alpha) = style(l);
-        LayerInfo {
-            name: l.name(),
-            label: l.label(),
-            counts: l.counts(),
-            binary: l.binary(),
-            palette,
-            alpha,
-        }
-    })
-    .collect()
+    ALL_LAYERS
+        .into_iter()
+        .map(|l| {
+            let (palette, alpha) = style(l);
+            LayerInfo {
+                name: l.name(),
+                label: l.label(),
+                counts: l.counts(),
+                binary: l.binary(),
+                palette,
+                alpha,
+            }
+        })
+        .collect()
+}
+
+/// The names of the layers `ep` can draw, bottom to top (a searcher
+/// without per-cell counts has no count layers), for a display's layer switch.
+pub fn layers_of(ep: &Episode) -> Vec<&'static str> {
+    let mut scratch = Vec::new();
+    layers()
+        .into_iter()
+        .zip(ALL_LAYERS)
+        .filter(|(info, l)| !info.counts || ep.counts(*l, &mut scratch).is_some())
+        .map(|(info, _)| info.name)
+        .collect()
 }
 
 /// One heat layer to draw.
@@ -473,6 +488,18 @@ mod tests {
             ..Config::default()
         }
         .with(&[("loops", "10"), ("keep_traces", "2")])
+    }
+
+    #[test]
+    fn layers_of_names_the_count_layers_only_for_searchers_that_keep_counts() {
+        let of = |searcher: &str| {
+            let cfg = small().with(&[("searcher", searcher)]);
+            layers_of(&Episode::new(&cfg).unwrap())
+        };
+        let masses = ["prior", "plan", "posterior", "searched"];
+        assert_eq!(of("mcts"), [&masses[..], &["visits"]].concat());
+        assert_eq!(of("rw"), masses);
+        assert_eq!(of("nsarw"), [&masses[..], &["visits", "walker"]].concat());
     }
 
     #[test]

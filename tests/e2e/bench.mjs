@@ -1,7 +1,14 @@
 #!/usr/bin/env node
 // Browser benchmark (no timed assertions): prints one JSON object with
-//   fps_n256              frames/s at N=256 with the prior + visit-count
-//                         heatmaps and the path drawn while MCTS runs
+//   fps_n256              frames/s at N=256 with one heat layer (the prior),
+//                         the path and the gliding searcher drawn while MCTS runs
+//   draw_ms_per_frame_*   main-thread time per drawn frame: `boards` (the whole
+//                         board: scene, trails kept, rendering) and its parts
+//                         (Renderer methods: heat layer, trails, path, marks,
+//                         searcher, grid); n256_visits_trails draws the MCTS
+//                         visits (recoloured as the search runs) and the rollouts
+//   put_image_data_*      putImageData calls on the page's thread per drawn frame,
+//                         and the layers whose pixels changed (one call each)
 //   longest_task_ms_n256  the longest main-thread task meanwhile (PerformanceObserver 'longtask')
 //   page_loops_per_s_*    MCTS loops/s in the page (search worker, drawing on)
 //   page_loop_window_*    which loops of the episode the page ran meanwhile
@@ -52,26 +59,84 @@ const PROBE = () => {
   }
 };
 
-/** Waits for the page's runs, unticks the layers `untick`, and plays at full speed. */
-async function playAtFullSpeed(page, untick) {
+/**
+ * Times the drawing on the page's thread: wraps Boards.prototype.draw and
+ * the Renderer's drawing methods (the same module instances the page uses)
+ * and counts putImageData calls. Sums go to window.__draw.
+ */
+async function instrumentDrawing(page) {
+  await page.evaluate(async () => {
+    const { Renderer } = await import('./www/live/renderer.js');
+    const { Boards } = await import('./www/live/boards.js');
+    const d = { frames: 0, puts: 0, uploads: 0, ms: {} };
+    window.__draw = d;
+    const wrap = (proto, name, key) => {
+      const f = proto[name];
+      d.ms[key] = 0;
+      proto[name] = function wrapped(...a) {
+        const t = performance.now();
+        try {
+          return f.apply(this, a);
+        } finally {
+          d.ms[key] += performance.now() - t;
+        }
+      };
+    };
+    wrap(Boards.prototype, 'draw', 'boards');
+    for (const m of ['draw', 'drawTrails', 'drawPath', 'drawIntent', 'drawMarks', 'drawSearcher', 'drawFrame', 'hatched']) wrap(Renderer.prototype, m, m === 'draw' ? 'renderer' : m);
+    const boardsDraw = Boards.prototype.draw;
+    Boards.prototype.draw = function counted(...a) {
+      d.frames++;
+      return boardsDraw.apply(this, a);
+    };
+    const upload = Renderer.prototype.upload;
+    Renderer.prototype.upload = function counted(...a) {
+      const before = this.uploads;
+      const r = upload.apply(this, a);
+      d.uploads += this.uploads - before;
+      return r;
+    };
+    const put = CanvasRenderingContext2D.prototype.putImageData;
+    CanvasRenderingContext2D.prototype.putImageData = function counted(...a) {
+      d.puts++;
+      return put.apply(this, a);
+    };
+  });
+}
+
+/** Per drawn frame between two snapshots of window.__draw. */
+function perFrame(a, b) {
+  const frames = Math.max(1, b.frames - a.frames);
+  const ms = Object.fromEntries(Object.keys(b.ms).map((k) => [k, +((b.ms[k] - a.ms[k]) / frames).toFixed(3)]));
+  return { frames: b.frames - a.frames, ms, puts: +((b.puts - a.puts) / frames).toFixed(3), changed_layers: +((b.uploads - a.uploads) / frames).toFixed(3) };
+}
+
+/** Waits for the page's runs, unticks the layers `untick`, ticks `tick` (a heat chip), and plays at full speed. */
+async function playAtFullSpeed(page, untick, tick = []) {
   await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
-  await page.evaluate(async (ids) => {
+  await page.evaluate(async ([ids, on]) => {
     for (const id of ids) {
       const el = document.getElementById(id);
       if (el.checked) el.click();
+    }
+    for (const id of on) {
+      const el = document.getElementById(id);
+      if (!el.checked) el.click();
     }
     const t = window.torusTest;
     // Unticking a trace layer restarts the run (traces are kept from the start).
     await t.ready();
     t.dispatch({ type: 'speed', speed: 'max' });
     t.dispatch({ type: 'play' });
-  }, untick);
+  }, [untick, tick]);
 }
 
-async function measurePage(context, url, { untick = [] } = {}) {
+async function measurePage(context, url, { untick = [], tick = [] } = {}) {
   const { page } = await openPage(context, url);
   try {
-    await playAtFullSpeed(page, untick);
+    await page.waitForFunction(() => window.torusTest?.runs().length, null, { timeout: 60_000 });
+    await instrumentDrawing(page);
+    await playAtFullSpeed(page, untick, tick);
     await page.waitForTimeout(1000); // warm up
     const sample = () => page.evaluate(() => {
       const t = window.torusTest;
@@ -85,6 +150,7 @@ async function measurePage(context, url, { untick = [] } = {}) {
         state: t.state(),
         longest: window.__bench.longest,
         longTasks: window.__bench.longTasks,
+        draw: structuredClone(window.__draw),
       };
     });
     await page.evaluate(() => {
@@ -112,6 +178,7 @@ async function measurePage(context, url, { untick = [] } = {}) {
       longest_task_ms: b.longest,
       long_tasks: b.longTasks,
       state_at_end: b.state,
+      draw: perFrame(a.draw, b.draw),
       window: [a.loops, b.loops],
       config: a.config,
     };
@@ -250,22 +317,25 @@ const result = { seconds, repeat, chromium: null, url_n256: null };
 try {
   await browser.context.addInitScript(PROBE);
   result.chromium = browser.context.browser()?.version() ?? null;
-  // N=256: prior + visits heatmaps + path (the default layers), no rollout
-  // traces; N=100: a long episode at full speed. Each is measured `repeat`
+  // N=256: the prior heat layer, the path and the gliding searcher (the
+  // default picture), then the visits (a layer that changes) with the
+  // rollout trails; N=100: a long episode at full speed. Each is measured `repeat`
   // times on fresh pages, and each measurement's loop window is also timed
   // in one wasm call in the search worker and (--native) natively, right
   // after it: this machine's speed drifts by ±10% over a minute, so ratios
   // are taken per measurement and the medians reported.
   const q256 = '?n=256&sigma=40&loops=100&seed=1&belief=posterior';
   result.url_n256 = q256;
+  const noTraces = ['layer-rollouts', 'layer-practice'];
   const configs = [
-    ['n256', q256],
-    ['n100_sigma15', '?n=100&sigma=15&seed=1'],
+    ['n256', q256, noTraces, []],
+    ['n256_visits_trails', q256, [], ['layer-visits']],
+    ['n100_sigma15', '?n=100&sigma=15&seed=1', noTraces, []],
   ];
-  for (const [tag, query] of configs) {
+  for (const [tag, query, untick, tick] of configs) {
     const runs = [];
     for (let k = 0; k < repeat; k++) {
-      const m = await measurePage(browser.context, `${server.url}${query}`, { untick: ['layer-rollouts', 'layer-practice'] });
+      const m = await measurePage(browser.context, `${server.url}${query}`, { untick, tick });
       m.wasm = await measureWindow(browser.context, `${server.url}?autoplay=0`, m);
       m.native = wantNative ? nativeWindow(m) : null;
       runs.push(m);
@@ -273,6 +343,9 @@ try {
     const pick = (f) => median(runs.map(f));
     result[`fps_${tag}`] = r3(pick((m) => m.fps));
     result[`longest_task_ms_${tag}`] = Math.max(...runs.map((m) => m.longest_task_ms));
+    result[`draw_ms_per_frame_${tag}`] = Object.fromEntries(Object.keys(runs[0].draw.ms).map((k) => [k, r3(pick((m) => m.draw.ms[k]))]));
+    result[`put_image_data_per_frame_${tag}`] = r3(pick((m) => m.draw.puts));
+    result[`changed_layers_per_frame_${tag}`] = r3(pick((m) => m.draw.changed_layers));
     result[`long_tasks_${tag}`] = runs.reduce((a, m) => a + m.long_tasks, 0);
     result[`page_loops_per_s_${tag}`] = Math.round(pick((m) => m.loops_per_s));
     result[`wasm_window_loops_per_s_${tag}`] = Math.round(pick((m) => m.wasm));

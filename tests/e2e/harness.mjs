@@ -124,10 +124,11 @@ export async function startServer(dir = ROOT, { timeoutMs = TIMEOUT_MS } = {}) {
 }
 
 /**
- * Launch Chromium with a fresh, empty profile directory.
+ * Launch Chromium with a fresh, empty profile directory. `device` options
+ * (deviceScaleFactor, isMobile, hasTouch, reducedMotion) go to the context.
  * Resolves to { context, close() }; close() also deletes the profile.
  */
-export async function launchBrowser({ timeoutMs = TIMEOUT_MS, viewport = { width: 1280, height: 800 } } = {}) {
+export async function launchBrowser({ timeoutMs = TIMEOUT_MS, viewport = { width: 1280, height: 800 }, ...device } = {}) {
   const profile = await mkdtemp(path.join(tmpdir(), 'torus-e2e-profile-'));
   let context;
   try {
@@ -137,6 +138,7 @@ export async function launchBrowser({ timeoutMs = TIMEOUT_MS, viewport = { width
       args: CHROMIUM_ARGS,
       viewport,
       timeout: timeoutMs,
+      ...device,
     });
   } catch (err) {
     await rm(profile, { recursive: true, force: true });
@@ -161,9 +163,11 @@ export async function launchBrowser({ timeoutMs = TIMEOUT_MS, viewport = { width
  *   consoleErrors  console.error messages and uncaught page errors
  *   failedRequests network failures and HTTP status >= 400
  *   offOrigin      requests to any other origin (blocked)
+ * The page opens as a returning visitor's (the first-visit tour is marked
+ * seen) unless `firstVisit`.
  * Resolves to { page, report } after the load event.
  */
-export async function openPage(context, url, { timeoutMs = TIMEOUT_MS } = {}) {
+export async function openPage(context, url, { timeoutMs = TIMEOUT_MS, firstVisit = false } = {}) {
   const origin = new URL(url).origin;
   const report = { consoleErrors: [], failedRequests: [], offOrigin: [] };
   const page = await context.newPage();
@@ -198,6 +202,15 @@ export async function openPage(context, url, { timeoutMs = TIMEOUT_MS } = {}) {
       console.error(`CSP violation: ${e.violatedDirective} blocked ${e.blockedURI || 'inline'} (${e.sample || 'no sample'})`);
     });
   });
+  if (!firstVisit) {
+    await page.addInitScript(() => {
+      try {
+        localStorage.setItem('torus-search.tour', 'seen');
+      } catch {
+        /* storage refused: the tour shows */
+      }
+    });
+  }
   await page.goto(url, { waitUntil: 'load', timeout: timeoutMs });
   return { page, report };
 }

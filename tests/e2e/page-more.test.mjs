@@ -201,7 +201,7 @@ test('the belief MCTS draws its plan ahead, one cell a step from where it stands
   });
 });
 
-test('teaching view, clicking the grid sets the start, painting a prior', { timeout: 180_000 }, async () => {
+test('teaching view, picking the start on the grid, painting a prior', { timeout: 180_000 }, async () => {
   await withApp('?autoplay=0', async (page) => {
     await page.click('#teaching');
     assert.match(await page.evaluate(() => location.search), /n=11/);
@@ -210,8 +210,10 @@ test('teaching view, clicking the grid sets the start, painting a prior', { time
     for (let i = 0; i < 3; i++) await page.click('#step-loop');
     await page.waitForTimeout(100);
     await viewShot(page, 'teaching-view');
-    // Click the cell in the middle of the grid: start becomes (6,6).
+    // Setting the start is an explicit mode: its "Pick on grid" toggle, then
+    // a click on the cell in the middle of the grid: start becomes (6,6).
     const box = await page.locator('#view-0').boundingBox();
+    await page.click('#start-pick');
     await page.mouse.click(box.x + box.width * (5.5 / 11), box.y + box.height * (5.5 / 11));
     assert.equal(await page.inputValue('#start'), '6,6');
     assert.match(await page.evaluate(() => location.search), /start=6%2C6/);

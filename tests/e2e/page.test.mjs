@@ -37,7 +37,13 @@ test('the default demo autoplays, draws and reaches found with no console errors
     const optimal = Number(await text(page, '#optimal'));
     assert.ok(steps >= optimal && optimal > 0);
     assert.equal(await text(page, '#ratio'), (steps / optimal).toFixed(2));
-    assert.match(await text(page, '#board-0 .banner'), new RegExp(`Found in ${steps} steps \\(optimal ${optimal}, ratio`));
+    // The numbers in plain words, the bound as the engine computed it for this prior.
+    const bound = await text(page, '#lower-bound');
+    assert.equal(bound, '78.2');
+    assert.equal(
+      await text(page, '#board-0 .banner'),
+      `Found in ${steps} steps. The shortest path was ${optimal} steps. Over many targets from this prior, no searcher can average fewer than ${bound} steps.`,
+    );
     for (const id of ['#loops-per-s', '#fps']) assert.match(await text(page, id), /\d/);
     await screenshot(page, 'default-demo-found');
   });

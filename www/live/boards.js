@@ -1,14 +1,22 @@
 // The boards: one canvas per run (two in a race), each drawn by a Renderer
-// from the run's latest frame and the view options, and the pointer on
-// them (clicking a cell, painting strokes).
+// from the run's latest frame, the view options and the motion state (the
+// gliding searcher, the trails on the board, the found pulse), and the
+// pointer on them. A click or tap only selects a cell (or, in an explicit
+// mode, sets one); a drag paints only in painting mode, and otherwise a
+// swipe scrolls the page.
 
 import { $, setText } from '../shared/ui.js';
 import { Renderer, drawNotice } from './renderer.js';
+import { Glide, Pulse, pointAt } from './motion.js';
+import { TraceKeeper } from './trails.js';
+
+/** A pointer that moves further than this (CSS px) between down and up is a swipe, not a tap. */
+const TAP_SLOP = 10;
 
 export class Boards {
   /**
    * @param {object} o
-   * @param {(idx) => void} o.onClick            a cell clicked (not painting)
+   * @param {(idx, i, event) => void} o.onClick  a cell clicked or tapped (not painting)
    * @param {() => boolean} o.painting            true while the pointer paints
    * @param {(idx, first) => void} o.onStroke     a cell under a painting stroke
    * @param {() => void} o.onStrokeEnd            the stroke ended
@@ -16,6 +24,8 @@ export class Boards {
    */
   constructor({ onClick, painting, onStroke, onStrokeEnd, onResize }) {
     this.renderers = [0, 1].map((i) => new Renderer($(`view-${i}`)));
+    this.motion = [0, 1].map(() => ({ glide: new Glide(), trails: new TraceKeeper(), pulse: new Pulse() }));
+    this.selected = -1;
     const ro = new ResizeObserver(() => {
       this.fit();
       onResize();
@@ -34,6 +44,7 @@ export class Boards {
     const canvas = renderer.canvas;
     let stroke = false;
     let last = -1;
+    let down = null; // where a possible tap began
     canvas.addEventListener('pointerdown', (e) => {
       const idx = renderer.cellAt(e.clientX, e.clientY);
       if (idx < 0) return;
@@ -42,7 +53,7 @@ export class Boards {
         last = idx;
         canvas.setPointerCapture(e.pointerId);
         onStroke(idx, true);
-      } else onClick(idx, i);
+      } else down = { x: e.clientX, y: e.clientY, idx };
     });
     canvas.addEventListener('pointermove', (e) => {
       if (!stroke) return;
@@ -51,13 +62,21 @@ export class Boards {
       last = idx;
       onStroke(idx, false);
     });
-    const end = () => {
+    const end = (e) => {
+      if (down && e.type === 'pointerup' && Math.hypot(e.clientX - down.x, e.clientY - down.y) <= TAP_SLOP) onClick(down.idx, i, e);
+      down = null;
       if (!stroke) return;
       stroke = false;
       onStrokeEnd();
     };
     canvas.addEventListener('pointerup', end);
+    // A swipe that scrolls the page cancels the pointer: no tap.
     canvas.addEventListener('pointercancel', end);
+  }
+
+  /** Marks the canvases for the pointer's mode: painting or picking takes the touch, else a swipe scrolls. */
+  setPointerMode(mode) {
+    for (const r of this.renderers) r.canvas.dataset.pointer = mode;
   }
 
   /** Shows one board, or two side by side with titles and the scoreboard. */
@@ -66,53 +85,72 @@ export class Boards {
     $('boards').classList.toggle('race', race);
     $('board-1').hidden = !race;
     $('scoreboard').hidden = !race;
+    this.selected = -1;
     runs.forEach((r, i) => {
       setText($(`board-${i}`).querySelector('.board-title'), race ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : '');
+      this.motion[i].trails.reset();
     });
     requestAnimationFrame(() => this.fit());
   }
 
   /**
-   * Draws each run: its layers (those the frame request asked for and the
-   * run has), path, traces, markers and decision arrows. `preview` replaces
-   * the main board's prior while a prior is being painted. Returns true
-   * while a long path is still being drawn (draw again next frame).
+   * Draws each run at time `now`: its heat layer (and the searched hatch),
+   * path, trails, marks and decision arrows. `preview` replaces the main
+   * board's prior while a prior is being painted; `live` says the search
+   * runs on its own; `still` is reduced motion. Returns { pending } (a long
+   * path still being drawn) and { animating } (the searcher gliding, trails
+   * fading or the found pulse playing): either asks for another frame.
    */
-  draw(runs, requested, opts, preview = null) {
-    let more = false;
+  draw(runs, requested, opts, { preview = null, now = performance.now(), live = false, still = false } = {}) {
+    let pending = false;
+    let animating = false;
     runs.forEach((run, i) => {
-      const f = run.frame;
-      const running = f.status === 'running';
-      const layers = run.drawnLayers(requested);
+      const scene = this.scene(run, i, requested, opts, { now, live, still });
       if (preview && i === 0) {
         // A preview changes every stroke: never reuse an upload for it (no key).
-        const at = layers.findIndex((l) => l.layer === 'prior');
-        const rgba = new Uint8ClampedArray(preview.buffer, preview.byteOffset, preview.length);
-        if (at >= 0) layers[at] = { rgba };
-        else layers.unshift({ rgba });
+        scene.layers = [{ rgba: new Uint8ClampedArray(preview.buffer, preview.byteOffset, preview.length) }];
       }
-      more =
-        this.renderers[i].draw({
-          n: run.n,
-          layers,
-          path: opts.path ? run.pathView() : null,
-          pathLen: run.pathLen,
-          pathKey: run,
-          start: run.start,
-          position: f.position,
-          target: run.target,
-          showTarget: f.status === 'found' || opts.reveal,
-          rv: run.config.rv,
-          rollouts: opts.rollouts ? run.traces : [],
-          practice: opts.practice && running ? run.practice : -1,
-          intent: opts.intent && running ? run.intent : null,
-          decision:
-            opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
-          grid: opts.grid,
-          tiling: opts.tiling,
-        }) || more;
+      pending = this.renderers[i].draw(scene) || pending;
+      const m = this.motion[i];
+      animating = animating || m.glide.moving() || m.pulse.playing(now) || (live && m.trails.busy());
     });
-    return more;
+    return { pending, animating };
+  }
+
+  /** The renderer's scene of one run (see Renderer.draw). */
+  scene(run, i, requested, opts, { now, live, still }) {
+    const f = run.frame;
+    const running = f.status === 'running';
+    const found = f.status === 'found';
+    const m = this.motion[i];
+    const drawn = run.drawnLayers(requested);
+    const mask = drawn.find((l) => opts.masks.has(l.layer));
+    const path = run.pathView();
+    const shown = m.glide.at(run, run.pathLen - 1, now, still);
+    m.trails.update(opts.rollouts ? run.traces : [], run.practice, now, { live: live && running, still });
+    return {
+      n: run.n,
+      layers: drawn.filter((l) => l !== mask).map((l) => ({ ...l, flat: l.max > 0 && l.min_nonzero === l.max })),
+      searched: mask ?? null,
+      path: opts.path ? path : null,
+      pathLen: run.pathLen,
+      pathKey: run,
+      highlight: found,
+      start: run.start,
+      position: f.position,
+      at: run.pathLen > 0 ? pointAt(path, run.pathLen, shown, run.n) : null,
+      target: run.target,
+      showTarget: found || opts.reveal,
+      pulses: m.pulse.rings(run, found, now, still),
+      rv: run.config.rv,
+      trails: running ? m.trails.visible({ live, still }) : [],
+      practice: opts.practice && running ? m.trails.practice() : -1,
+      intent: opts.intent && running ? run.intent : null,
+      decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
+      selected: i === 0 ? this.selected : -1,
+      grid: opts.grid,
+      tiling: opts.tiling,
+    };
   }
 
   /** Dims every board with a notice. */
@@ -128,5 +166,20 @@ export class Boards {
   /** The cell under a pointer on board `i`, or −1. */
   cellAt(i, x, y) {
     return this.renderers[i].cellAt(x, y);
+  }
+
+  /** The marks the last frame drew on board `i` (MARKS keys). */
+  drawnMarks(i = 0) {
+    return [...this.renderers[i].drawn];
+  }
+
+  /** Where the searcher of run `run` is drawn on board `i`, in client px (for the tour). */
+  searcherPoint(run, i = 0) {
+    const r = this.renderers[i];
+    const f = this.motion[i].glide.shown;
+    const [x, y] = pointAt(run.pathView(), run.pathLen, Math.max(0, f), run.n);
+    // Mid-wrap, the copy on the grid.
+    const wrap = (v) => ((v % run.n) + run.n) % run.n;
+    return r.clientPoint(wrap(x), wrap(y));
   }
 }

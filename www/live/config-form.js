@@ -6,8 +6,10 @@
 // change goes back as text to onParam(key, raw): nothing here checks a value.
 // Controls of parameters that do not apply to the config are hidden.
 //
-// The grid edits one parameter at a time (`pick`): a cell (click a cell) or
-// a painting (drag to paint), chosen with the toggle next to that control.
+// The grid edits a parameter only when asked (`pick`): a cell (the next
+// click on a cell sets it, then the mode ends) or a painting (drag to
+// paint), chosen with the toggle next to that control. Otherwise a click on
+// the grid only inspects it (www/live/grid-input.js).
 
 import { $, fillSelect } from '../shared/ui.js';
 import { paramEntries, groupLabel } from '../shared/schema.js';
@@ -32,9 +34,10 @@ export class ConfigForm {
     this.onPaintClear = onPaintClear;
     this.fields = new Map(); // key -> { entry, field, set(text), inputs }
     this.applicable = new Set();
-    // The grid sets the first cell parameter (the start) until told otherwise.
-    this.defaultPick = this.entries.find((e) => e.kind === 'cell')?.key ?? null;
-    this.pick = this.defaultPick;
+    // The first cell parameter (the start): Shift+click on the grid sets it.
+    this.startKey = this.entries.find((e) => e.kind === 'cell')?.key ?? null;
+    this.pick = null;
+    this.onPickChange = () => {}; // (kind of the grid's parameter, or null)
     this.build(schema, box);
     // 'custom' is shown, never sent: it means no preset has all its values.
     this.preset = preset;
@@ -111,11 +114,18 @@ export class ConfigForm {
     this.showPick();
   }
 
+  /** Ends the grid's edit mode. */
+  clearPick() {
+    this.pick = null;
+    this.showPick();
+  }
+
   showPick() {
     for (const { entry, field } of this.fields.values()) {
       const b = field.querySelector('.pick');
       if (b) b.setAttribute('aria-pressed', String(entry.key === this.pick));
     }
+    this.onPickChange(this.pickKind());
   }
 
   /** The kind of the grid's parameter (null when the grid edits nothing). */
@@ -146,7 +156,7 @@ export class ConfigForm {
       // A painting that comes into use is edited on the grid at once.
       if (on && !was.has(key) && entry.kind === 'paint' && was.size) this.pick = key;
     }
-    if (this.pick && !applicable.has(this.pick)) this.pick = applicable.has(this.defaultPick) ? this.defaultPick : null;
+    if (this.pick && !applicable.has(this.pick)) this.pick = null;
     this.showPick();
     for (const set of this.groups) set.hidden = ![...set.querySelectorAll('.field')].some((f) => !f.hidden);
     this.more.hidden = ![...this.more.querySelectorAll('.field')].some((f) => !f.hidden);
@@ -239,7 +249,7 @@ function cell(entry, form) {
   onChange(el, entry, form, () => el.value.trim());
   const pick = pickButton(entry, form, 'Pick on grid');
   pick.id = `${entry.key}-pick`;
-  pick.title = `Click a cell of the lattice to set ${entry.label}`;
+  pick.title = `Then click a cell of the lattice to set ${entry.label}`;
   pick.setAttribute('aria-label', `${entry.label}: pick on the grid`);
   wrap.append(el, pick);
   return { main: el, node: wrap, inputs: [el, pick], set: (t) => (el.value = t) };

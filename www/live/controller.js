@@ -9,12 +9,15 @@
 // document.body.dataset.state for tests.
 //
 // Commands (dispatch({ type, ... })):
-//   reset { configs, autoplay }  fresh runs from engine configs; resolves once they have a frame
+//   reset { configs, autoplay, paused }  fresh runs from engine configs; resolves once they
+//                                have a frame (paused: they wait in `paused` rather than `idle`)
 //   play | pause | toggle        playback
 //   stepLoop | stepMove          one MCTS loop / one real move on each unfinished run (pauses first)
 //   speed { speed }              loops per frame, or 'max'
 //   view { view }                what frames carry: { layers: [layer requests], traces: bool }
 //   redraw                       draw again with a fresh frame (view options changed)
+//   animate                      draw again at the next animation frame, with the frame held
+//                                (motion on the board: a glide, a fade, a pulse)
 //   export                       resolves to each run's export (config, path, result)
 //   request { request, payload } a raw worker request (benchmarks, tests)
 // Events (on(name, fn)):
@@ -43,7 +46,7 @@ export class Controller {
     this.view = { layers: [], traces: false };
     this.state = 'idle';
     this.speed = 10;
-    this.rafId = 0;
+    this.scheduled = false; // an animation frame is asked for (a flag: a held or shimmed rAF may return no id)
     this.dirty = true;
     this.wantFrame = false;
     this.inflight = false;
@@ -71,7 +74,7 @@ export class Controller {
   dispatch(cmd) {
     switch (cmd.type) {
       case 'reset':
-        this.ready = this.reset(cmd.configs, cmd.autoplay);
+        this.ready = this.reset(cmd.configs, cmd.autoplay, cmd.paused);
         return this.ready;
       case 'play':
         return this.play();
@@ -91,6 +94,9 @@ export class Controller {
         return this.redraw();
       case 'redraw':
         return this.redraw();
+      case 'animate':
+        this.dirty = true;
+        return this.schedule();
       case 'export':
         return this.send('export').then((a) => a?.runs ?? null);
       case 'request':
@@ -144,9 +150,11 @@ export class Controller {
 
   /**
    * (Re)builds the runs. Resolves to true once the fresh runs have their
-   * first frame (false if it failed or a newer reset overtook it).
+   * first frame (false if it failed or a newer reset overtook it). With
+   * `paused` they wait in `paused` (an edit made while paused), else in
+   * `idle` unless `autoplay`.
    */
-  async reset(configs, autoplay = false) {
+  async reset(configs, autoplay = false, paused = false) {
     const ticket = ++this.resets;
     this.runs = [];
     if (this.state !== 'idle') this.setState('idle');
@@ -166,6 +174,7 @@ export class Controller {
     if (!(await this.refresh())) return false;
     this.settle();
     if (autoplay && this.isLive()) this.play();
+    else if (paused && this.state === 'idle') this.setState('paused');
     return ticket === this.resets;
   }
 
@@ -254,12 +263,14 @@ export class Controller {
   }
 
   schedule() {
-    if (!this.rafId && this.raf) this.rafId = this.raf(this.tick);
+    if (this.scheduled || !this.raf) return;
+    this.scheduled = true;
+    this.raf(this.tick);
   }
 
   /** One animation frame: ask for the next frame of the search, and draw what has arrived. */
   tick(ts) {
-    this.rafId = 0;
+    this.scheduled = false;
     const running = this.state === 'running' || this.stepping > 0;
     if ((running || this.wantFrame) && !this.inflight && this.runs.length) {
       this.wantFrame = false;

@@ -4,6 +4,9 @@
 
 import { $, fillSelect } from '../shared/ui.js';
 
+/** The keys (shown on the page, beside the playback buttons). */
+const KEYS = { ' ': 'toggle', ArrowRight: 'stepMove', ArrowUp: 'stepLoop', r: 'restart', R: 'restart', n: 'newSeed', N: 'newSeed' };
+
 /** Speeds on the slider, in loops per frame. */
 const SPEEDS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
 
@@ -20,7 +23,7 @@ export class Controls {
     $('race').addEventListener('change', (e) => onRace(e.target.value));
     $('speed').addEventListener('input', (e) => {
       const s = SPEEDS[Number(e.target.value)];
-      $('speed-label').value = speedLabel(s);
+      showSpeed(s);
       onSpeed(s);
     });
     for (const [id, action] of [['play', 'toggle'], ['step-move', 'stepMove'], ['step-loop', 'stepLoop'], ['reset', 'restart'], ['new-seed', 'newSeed']]) {
@@ -34,7 +37,7 @@ export class Controls {
       const t = e.target;
       if (e.ctrlKey || e.metaKey || e.altKey) return;
       if (t instanceof HTMLElement && t.closest('input, select, textarea, [contenteditable]')) return;
-      const action = { ' ': 'toggle', ArrowRight: 'stepMove', ArrowUp: 'stepLoop', r: 'restart', R: 'restart' }[e.key];
+      const action = KEYS[e.key];
       if (!action) return;
       e.preventDefault();
       onPlayback(action);
@@ -45,13 +48,19 @@ export class Controls {
   sync(view) {
     $('race').value = view.race;
     $('speed').value = speedIndex(view.speed);
-    $('speed-label').value = speedLabel(view.speed);
+    showSpeed(view.speed);
   }
 
   /** Enables the loop button for runs that deliberate (or make a plan in slices: a slice a press). */
   setDeliberates(yes) {
     $('step-loop').disabled = !yes;
   }
+}
+
+/** The speed as a screen reader says it ("10 loops/frame"), and beside the slider. */
+function showSpeed(speed) {
+  $('speed-label').value = speedLabel(speed);
+  $('speed').setAttribute('aria-valuetext', speedLabel(speed));
 }
 
 function speedIndex(speed) {

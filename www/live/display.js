@@ -1,45 +1,66 @@
-// What the live view shows of the controller's events (it makes the legend
-// and the steps chart): fresh runs set up the boards and the chart; each frame draws the boards and (at most every
-// PANEL_MS while running) the text panels, legend and chart; the state
-// shows in the badge and the play button; an error, in the message.
+// What the live view shows of the controller's events (with the found
+// card's next steps and the first-visit tour): fresh runs set up the
+// boards, the heat switch and the chart; each frame draws the boards
+// (asking for another animation frame while something on them moves) and,
+// at most every PANEL_MS while running, the text panels, the legend, the
+// explanation, the line under the board and the chart; the board's
+// description for screen readers at most once a second; the state shows in
+// the badge and the play button; an error, in the message.
 
 import { describeError } from '../shared/engine.js';
 import { $, setText, showMessage } from '../shared/ui.js';
-import { updateStats } from './panels/stats.js';
+import { updateStats, describeRun } from './panels/stats.js';
 import { updateDecision } from './panels/decision.js';
+import { updateExplanation } from './panels/explain.js';
 import { Legend } from './panels/legend.js';
 import { StepsChart } from './steps-chart.js';
+import { reducedMotion } from './motion.js';
+import { bindFound } from './panels/found.js';
+import { Tour } from './tour.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
+/** Least time between updates of the board's text description while running (ms). */
+const DESCRIBE_MS = 1000;
 
 /**
  * @param {object} o
  * @param {object} o.engine, o.schema   the wasm module (palettes) and its schema (layers)
  * @param {object} o.controller   the playback state machine (its events)
+ * @param {object} o.live, o.races   the LiveState and the race options (the next steps after the end)
  * @param {object} o.boards, o.viewState, o.painter, o.controls   what it draws and updates
  */
-export function bindDisplay({ engine, schema, controller, boards, viewState, painter, controls }) {
-  const legend = new Legend(schema, (p) => engine.paletteLut(p));
+export function bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls }) {
+  bindFound({ controller, live, races });
+  const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
+  const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis
   let lastTs = 0;
   let panelsTs = 0;
+  let describedTs = -Infinity;
   controller.on('runs', (runs) => {
     runTime = 0;
     chart.reset(runs.map((r, i) => (runs.length > 1 ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : r.label)));
     boards.setup(runs);
+    legend.reset();
+    drawn.clear();
+    describedTs = -Infinity;
     controls.setDeliberates(runs[0].deliberates);
+    const heat = viewState.heat();
+    viewState.setAvailable(runs[0].layer_names);
+    if (viewState.heat() !== heat) controller.dispatch({ type: 'view', view: viewState.frameView() });
   });
-  controller.on('state', (s) => {
+  controller.on('state', (s, prev) => {
     setText('state-badge', s);
     setText('play', s === 'running' ? 'Pause' : 'Play');
+    if (s !== prev) describedTs = -Infinity;
   });
   controller.on('error', (err) => {
     showMessage(describeError(err));
     setText('state-badge', 'error');
     setText('play', 'Restart');
-    boards.notice('Stopped: see the message above. Restart to try again.');
+    boards.notice('Stopped: see the message. Restart to try again.');
   });
   controller.on('frame', ({ state, meter, runs }) => {
     const ts = performance.now();
@@ -48,15 +69,28 @@ export function bindDisplay({ engine, schema, controller, boards, viewState, pai
     if (!runs.length) return;
     const opts = viewState.options();
     const requested = viewState.layerRequests();
-    if (boards.draw(runs, requested, opts, painter.preview)) controller.dispatch({ type: 'redraw' });
+    const { pending, animating } = boards.draw(runs, requested, opts, { preview: painter.preview, now: ts, live: state === 'running', still: reducedMotion() });
+    if (pending || animating) controller.dispatch({ type: 'animate' });
+    for (const m of boards.drawnMarks(0)) drawn.add(m);
+    // The board's description for screen readers changes at most once a second.
+    if (ts - describedTs >= (state === 'running' ? DESCRIBE_MS : 0)) {
+      describedTs = ts;
+      setText('board-desc', describeRun(runs[0]));
+    }
     if (state === 'running' && ts - panelsTs < PANEL_MS) return;
     panelsTs = ts;
+    setText('view-desc', describeRun(runs[0]));
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);
     // A plan made in slices can be stepped a slice at a time.
     controls.setDeliberates(runs[0].deliberates || !!runs[0].frame.planning);
-    legend.update(runs[0].drawnLayers(requested));
+    const heat = runs[0].drawnLayers(requested).find((l) => !opts.masks.has(l.layer));
+    legend.update(heat && { ...heat, flat: heat.max > 0 && heat.min_nonzero === heat.max }, drawn);
+    drawn.clear();
+    updateExplanation(runs[0], viewState.heat());
     const known = (r) => r.frame.status === 'found' || opts.reveal;
     chart.push(runTime, runs.map((r) => r.frame.steps), runs.map((r) => (known(r) ? r.optimal : null)), state !== 'running');
   });
+  // After the drawing above: the tour points at where this frame drew the searcher.
+  new Tour({ controller, boards });
 }

@@ -6,6 +6,7 @@
 
 import { writeUrl } from '../shared/url-state.js';
 import { showMessage } from '../shared/ui.js';
+import { reducedMotion } from './motion.js';
 
 export class LiveState {
   /**
@@ -21,6 +22,7 @@ export class LiveState {
     this.kept = null; // keep_traces of the runs under way
     this.trapped = false;
     this.restarted = [];
+    this.last = { autoplay: false, paused: false }; // the newest restart's
     controller.on('error', (err) => {
       this.trapped = err instanceof WebAssembly.RuntimeError;
     });
@@ -105,8 +107,13 @@ export class LiveState {
     return [main, race.pairs.reduce((c, [key, v]) => this.engine.setParam(c, key, v), main)];
   }
 
-  /** Fresh runs from the current config (same seed); resolves once they have a frame. */
-  restart(autoplay = this.controller.state === 'running' || this.view.autoplay) {
+  /**
+   * Fresh runs from the current config (same seed); resolves once they have
+   * a frame. By default they play on if the runs played, wait paused if they
+   * were paused (an edit never starts a run), and after a finished run play
+   * as the view says (not under reduced motion).
+   */
+  restart(autoplay = this.playsOn()) {
     if (this.trapped) {
       // A trap in the page's own wasm instance (not the search worker's,
       // which is replaced at the next reset) leaves it untrustworthy.
@@ -115,7 +122,17 @@ export class LiveState {
     }
     for (const fn of this.restarted) fn();
     if (this.controller.state !== 'error') showMessage('');
-    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay });
+    // A reset under way (state idle) counts as what it will become.
+    const s = this.controller.state;
+    const paused = s === 'paused' || (s === 'idle' && this.last.paused);
+    this.last = { autoplay, paused };
+    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay, paused });
+  }
+
+  playsOn() {
+    const s = this.controller.state;
+    if (s === 'idle') return this.last.autoplay;
+    return s === 'running' || ((s === 'found' || s === 'capped') && this.view.autoplay && !reducedMotion());
   }
 
   /** Calls `fn` at every restart. */
@@ -131,7 +148,7 @@ export class LiveState {
 
   /** A playback button or key. */
   playback(action) {
-    if (action === 'restart') this.restart(this.view.autoplay);
+    if (action === 'restart') this.restart();
     else if (action === 'newSeed') this.edit('seed', String(crypto.getRandomValues(new Uint32Array(1))[0]));
     else if (action === 'toggle' && this.controller.state === 'error') this.restart(true);
     else this.controller.dispatch({ type: action });

@@ -16,7 +16,10 @@ export const PRESETS = {
 export function bindPresets({ engine, live, viewState }) {
   const start = (name) => {
     const p = PRESETS[name];
-    if (name === 'teaching') viewState.teaching();
+    if (name === 'teaching') {
+      viewState.teaching();
+      live.controller.dispatch({ type: 'view', view: viewState.frameView() });
+    }
     live.change({ config: engine.parseParams(p.pairs).config, view: p.view, autoplay: true, note: p.note });
   };
   $('teaching').addEventListener('click', () => start('teaching'));

@@ -1,181 +1,25 @@
 // Pure drawing: no engine calls, no game logic. Everything it draws is handed
 // to it in a `scene` object (typed arrays the worker sent, and plain numbers).
 //
-// Heatmaps: one RGBA buffer per layer (coloured in Rust, src/view.rs) goes
-// through ONE putImageData into an N×N offscreen canvas, which drawImage
-// scales onto the view with smoothing off. Paths are wrap-aware: a step that
-// crosses the boundary is drawn to the edge and continues from the opposite
-// edge, so no line ever crosses the grid.
+// The heat layer: one RGBA buffer (coloured in Rust, src/display/view.rs)
+// goes through ONE putImageData into an N×N offscreen canvas when its key
+// changes, which drawImage scales onto the view with smoothing off. A
+// second quantity is never a second colour ramp: the searched cells are a
+// hatch (their mask is the searched layer's pixels). Paths and trails are
+// wrap-aware (paths.js). Each frame records which marks it drew (`drawn`),
+// so the legend can be held to naming all of them.
+
+import { COLORS, hatchTile, paintArrow, paintPractice, paintPulse, paintSearcher, paintSelected, paintStart, paintTarget, paintVision, INK } from './marks.js';
+import { PathLayer, appendWrapPath, cellXY, forEachTile } from './paths.js';
+import { drawTrail } from './trails.js';
+
+export { PATH_POINTS_PER_FRAME, appendWrapPath, wrapSegments } from './paths.js';
+export { COLORS } from './marks.js';
 
 const MOVE_NAMES = ['Up', 'Right', 'Down', 'Left'];
 const MOVE_DELTAS = [[0, -1], [1, 0], [0, 1], [-1, 0]];
-
-export const COLORS = {
-  background: '#101418',
-  grid: 'rgba(255,255,255,0.10)',
-  frame: 'rgba(255,255,255,0.45)',
-  path: '#f2f5f7',
-  pathHalo: 'rgba(0,0,0,0.65)',
-  rollout: 'rgba(120,200,255,0.55)',
-  searcher: '#ffffff',
-  start: '#7fd4ff',
-  target: '#ff5fa2',
-  practice: '#7fd4ff',
-  intent: '#ffd166',
-  chosen: '#ffd166',
-  arrow: 'rgba(255,255,255,0.85)',
-  fade: 'rgba(16,20,24,0.62)',
-};
-
-function cellXY(idx, n) {
-  return [idx % n, (idx / n) | 0];
-}
-
-/** Signed shortest displacement from a to b on a ring of size n. */
-function wrapDelta(a, b, n) {
-  let d = b - a;
-  if (d > n / 2) d -= n;
-  else if (d < -n / 2) d += n;
-  return d;
-}
-
-/**
- * Appends the wrap-aware segments of a cell path (indices) to a Path2D, in
- * cell units (cell centres at x+0.5). A step whose shortest displacement
- * leaves the grid is drawn from its start to beyond the edge, then again from
- * beyond the opposite edge to its end (the caller clips to the grid).
- */
-export function appendWrapPath(p2d, cells, from, to, n) {
-  if (to - from < 1) return;
-  let [px, py] = cellXY(cells[from], n);
-  p2d.moveTo(px + 0.5, py + 0.5);
-  for (let i = from + 1; i < to; i++) {
-    const [x, y] = cellXY(cells[i], n);
-    const dx = wrapDelta(px, x, n);
-    const dy = wrapDelta(py, y, n);
-    const ux = px + dx;
-    const uy = py + dy;
-    if (ux < 0 || ux >= n || uy < 0 || uy >= n) {
-      // Leaves the grid: draw to the (unwrapped) end point, which is clipped
-      // at the edge, then re-enter from the opposite side.
-      p2d.lineTo(ux + 0.5, uy + 0.5);
-      p2d.moveTo(x - dx + 0.5, y - dy + 0.5);
-    }
-    p2d.lineTo(x + 0.5, y + 0.5);
-    px = x;
-    py = y;
-  }
-}
-
-/**
- * Splits a path into the visible segments, for tests: returns a list of
- * [x0,y0,x1,y1] in cell units after clipping to [0,n]², as appendWrapPath draws them.
- */
-export function wrapSegments(cells, n) {
-  // Records what appendWrapPath draws, so the tests check the drawing code itself.
-  const c = (v) => Math.min(n, Math.max(0, v));
-  const segs = [];
-  let at = [0, 0];
-  const pen = {
-    moveTo(x, y) {
-      at = [x, y];
-    },
-    lineTo(x, y) {
-      segs.push([c(at[0]), c(at[1]), c(x), c(y)]);
-      at = [x, y];
-    },
-  };
-  appendWrapPath(pen, cells, 0, cells.length, n);
-  return segs;
-}
-
-/**
- * Calls fn(tx, ty) once per tile, with `ctx` transformed to that tile's cell
- * units (tiles: [0], or [−1, 0, 1] for the 3×3 periodic view).
- */
-function forEachTile(ctx, cell, origin, gridPx, tiles, fn) {
-  for (const ty of tiles) {
-    for (const tx of tiles) {
-      ctx.setTransform(cell, 0, 0, cell, origin + tx * gridPx, origin + ty * gridPx);
-      fn(tx, ty);
-    }
-  }
-}
-
-/**
- * Path points drawn per frame at most. A frame draws only the path's new
- * segments; after a resize or a new run the whole path is drawn again, and a
- * long one fills in over a few frames rather than blocking one.
- */
-export const PATH_POINTS_PER_FRAME = 20000;
-
-/**
- * The searcher's path, kept drawn on two canvases the size of the view (halo
- * below, line above), so a frame strokes only the new segments and blits the
- * two: stroking the whole path every frame cost about 2 ms per 1000 moves.
- */
-class PathLayer {
-  constructor() {
-    this.halo = document.createElement('canvas');
-    this.line = document.createElement('canvas');
-    this.sig = '';
-    this.key = undefined; // the run the drawing belongs to (compared by identity)
-    this.done = 0; // path points drawn; the next segment starts at done − 1
-  }
-
-  /** Drops the drawing (the next update starts over). */
-  forget() {
-    this.sig = '';
-    this.done = 0;
-  }
-
-  /**
-   * Draws cells[done−1..len) (at most PATH_POINTS_PER_FRAME points) in every
-   * tile, starting over when the view's geometry, the run or the width
-   * changed, or the path got shorter. Returns true once the path is drawn
-   * to its end.
-   */
-  update(cells, len, n, view) {
-    const { width, height, cell, origin, gridPx, tiles, key, lineWidth } = view;
-    const sig = [width, height, n, cell, origin, tiles.length, lineWidth].join('|');
-    if (sig !== this.sig || key !== this.key || len < this.done) {
-      for (const c of [this.halo, this.line]) {
-        // Setting the size clears the canvas, even to the same size.
-        c.width = width;
-        c.height = height;
-      }
-      this.sig = sig;
-      this.key = key;
-      this.done = 0;
-    }
-    const from = Math.max(0, this.done - 1);
-    const to = Math.min(len, from + PATH_POINTS_PER_FRAME);
-    if (to - from >= 2) {
-      const p = new Path2D();
-      appendWrapPath(p, cells, from, to, n);
-      for (const [canvas, color, px] of [
-        [this.halo, COLORS.pathHalo, lineWidth + 2],
-        [this.line, COLORS.path, lineWidth],
-      ]) {
-        const ctx = canvas.getContext('2d');
-        ctx.save();
-        if (tiles.length === 1) {
-          ctx.beginPath();
-          ctx.rect(origin, origin, gridPx, gridPx);
-          ctx.clip();
-        }
-        ctx.lineCap = 'round';
-        ctx.lineJoin = 'round';
-        ctx.strokeStyle = color;
-        ctx.lineWidth = px / cell;
-        forEachTile(ctx, cell, origin, gridPx, tiles, () => ctx.stroke(p));
-        ctx.restore();
-      }
-    }
-    this.done = Math.max(this.done, to);
-    return this.done >= len;
-  }
-}
+/** A heat layer whose nonzero cells are all equal (a uniform prior) is drawn at this opacity, not at full brightness. */
+export const FLAT_ALPHA = 0.25;
 
 export class Renderer {
   /**
@@ -186,8 +30,15 @@ export class Renderer {
     this.ctx = canvas.getContext('2d', { alpha: false });
     this.offscreens = []; // one N×N canvas per layer slot
     this.pathLayer = new PathLayer();
+    this.hatch = { canvas: null, sig: '' };
+    this.trailCache = new Map(); // trail cells (by identity) -> { sig, canvas }
     this.n = 0;
     this.tiling = false;
+    this.dpr = 1;
+    this.drawn = new Set(); // marks drawn by the last frame (MARKS keys)
+    this.drawnLayers = []; // layer names drawn by the last frame
+    this.at = null; // where the last frame drew the searcher, in cell units
+    this.uploads = 0; // putImageData calls so far (the benchmark reads it)
     this.layout();
   }
 
@@ -206,6 +57,17 @@ export class Renderer {
     return off;
   }
 
+  /** Uploads a layer's pixels into slot `i` unless its key says they are there already. */
+  upload(i, layer, n) {
+    const off = this.layerCanvas(i, n);
+    if (layer.key === undefined || off.key !== layer.key) {
+      off.ctx.putImageData(new ImageData(layer.rgba, n, n), 0, 0);
+      off.key = layer.key;
+      this.uploads++;
+    }
+    return off;
+  }
+
   /** Recomputes cell size from the canvas's pixel size. */
   layout() {
     const size = Math.min(this.canvas.width, this.canvas.height);
@@ -219,8 +81,8 @@ export class Renderer {
   /** Sizes the backing store to the element's CSS size × devicePixelRatio. */
   fitToElement() {
     const rect = this.canvas.getBoundingClientRect();
-    const dpr = Math.min(window.devicePixelRatio || 1, 3);
-    const side = Math.max(64, Math.round(Math.min(rect.width, rect.height || rect.width) * dpr));
+    this.dpr = Math.min(window.devicePixelRatio || 1, 3);
+    const side = Math.max(64, Math.round(Math.min(rect.width, rect.height || rect.width) * this.dpr));
     if (this.canvas.width !== side || this.canvas.height !== side) {
       this.canvas.width = side;
       this.canvas.height = side;
@@ -243,16 +105,26 @@ export class Renderer {
     return y * this.n + x;
   }
 
+  /** The client (CSS px) point of a point in cell units of the main grid. */
+  clientPoint(x, y) {
+    const rect = this.canvas.getBoundingClientRect();
+    const k = rect.width / this.canvas.width;
+    return [rect.left + (this.origin + x * this.cell) * k, rect.top + (this.origin + y * this.cell) * k];
+  }
+
   /**
    * Draws one frame.
    * scene = {
-   *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n), key }] (same key = same pixels),
+   *   n, layers: [{ rgba: Uint8ClampedArray (4·n·n), key, flat }] (same key = same
+   *   pixels; flat: every nonzero cell equal), searched: { rgba, key } | null (a mask, hatched),
    *   path: Uint32Array, pathLen, pathKey (any value naming the run, compared by
-   *   identity: a new key redraws the path),
-   *   start, position, target (−1 = none), showTarget,
-   *   rv, rollouts: [Uint32Array] (oldest first), practice (−1 = none),
+   *   identity: a new key redraws the path), highlight (the found path),
+   *   start, position, at: [x, y] | null (the searcher's point in cell units, gliding),
+   *   target (−1 = none), showTarget, pulses: [phase in 0..1) (found rings),
+   *   rv, trails: [{ cells, alpha }] (oldest first), practice (−1 = none),
    *   intent: Uint32Array | null (a planner's path ahead, from the position),
-   *   decision: { visits: [4], leading: [4 bools] } | null, grid: bool, tiling: bool
+   *   decision: { visits: [4], leading: [4 bools] } | null, selected (−1 = none),
+   *   grid: bool, tiling: bool
    * }
    * Returns true while the path is not drawn to its end yet (a long path after
    * a resize or a new run): draw again next frame.
@@ -264,6 +136,9 @@ export class Renderer {
       this.tiling = !!scene.tiling;
       this.layout();
     }
+    this.drawn = new Set();
+    this.drawnLayers = [];
+    this.at = null;
     const ctx = this.ctx;
     const cs = this.cell;
     const gridPx = n * cs;
@@ -271,26 +146,25 @@ export class Renderer {
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.fillStyle = COLORS.background;
     ctx.fillRect(0, 0, this.canvas.width, this.canvas.height);
-
-    // Heatmap layers: one putImageData each (skipped when a layer's `key`
-    // says its pixels did not change), scaled by drawImage.
     ctx.imageSmoothingEnabled = false;
+    const blit = (img, alpha = 1) => {
+      ctx.globalAlpha = alpha;
+      for (const ty of tiles) for (const tx of tiles) ctx.drawImage(img, 0, 0, img.width, img.height, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
+      ctx.globalAlpha = 1;
+    };
     scene.layers.forEach((layer, li) => {
-      if (!layer || !layer.rgba || layer.rgba.length !== 4 * n * n) return;
-      const off = this.layerCanvas(li, n);
-      if (layer.key === undefined || off.key !== layer.key) {
-        off.ctx.putImageData(new ImageData(layer.rgba, n, n), 0, 0);
-        off.key = layer.key;
-      }
-      for (const ty of tiles) {
-        for (const tx of tiles) {
-          ctx.drawImage(off.canvas, 0, 0, n, n, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
-        }
-      }
+      if (!layer?.rgba || layer.rgba.length !== 4 * n * n) return;
+      blit(this.upload(li, layer, n).canvas, layer.flat ? FLAT_ALPHA : 1);
+      this.drawnLayers.push(layer.layer ?? 'preview');
     });
+    if (scene.searched?.rgba?.length === 4 * n * n) {
+      ctx.drawImage(this.hatched(scene.searched, n, gridPx, tiles), 0, 0);
+      this.drawn.add('searched');
+      this.drawnLayers.push(scene.searched.layer);
+    }
 
     // Everything in cell units from here on, translated per tile.
-    const lw = (px) => px / cs; // a width in device pixels, expressed in cell units
+    const px = this.dpr / cs; // one CSS pixel, in cell units
     const eachTile = (fn) => forEachTile(ctx, cs, this.origin, gridPx, tiles, fn);
     ctx.save();
     if (!this.tiling) {
@@ -300,151 +174,196 @@ export class Renderer {
     }
     ctx.lineCap = 'round';
     ctx.lineJoin = 'round';
+    this.drawTrails(scene, px);
+    const pending = this.drawPath(scene, gridPx, tiles);
+    this.drawIntent(scene, eachTile, px);
+    // Once found, the target (and its pulse) goes over the searcher beside it.
+    if (scene.highlight) this.drawSearcher(scene, px);
+    this.drawMarks(scene, eachTile, px);
+    if (!scene.highlight) this.drawSearcher(scene, px);
+    ctx.restore();
+    this.drawFrame(scene, gridPx);
+    return pending;
+  }
 
-    // Rollout traces (faint, oldest faintest).
-    const rollouts = scene.rollouts || [];
-    rollouts.forEach((trace, i) => {
-      if (!trace || trace.length < 2) return;
-      const p = new Path2D();
-      appendWrapPath(p, trace, 0, trace.length, n);
-      const a = 0.25 + 0.55 * ((i + 1) / rollouts.length);
-      eachTile(() => {
-        ctx.globalAlpha = a;
-        ctx.strokeStyle = COLORS.rollout;
-        ctx.lineWidth = lw(Math.max(1, cs * 0.12));
-        ctx.stroke(p);
-      });
-    });
-    ctx.globalAlpha = 1;
-
-    // The searcher's path, with a dark halo so it reads on any heatmap.
-    let pending = false;
-    if (scene.path && scene.pathLen > 1) {
-      const layer = this.pathLayer;
-      pending = !layer.update(scene.path, scene.pathLen, n, {
-        width: this.canvas.width,
-        height: this.canvas.height,
-        cell: cs,
-        origin: this.origin,
-        gridPx,
-        tiles,
-        key: scene.pathKey,
-        lineWidth: Math.max(1.5, Math.min(cs * 0.28, 6)),
-      });
-      ctx.setTransform(1, 0, 0, 1, 0, 0);
-      ctx.drawImage(layer.halo, 0, 0);
-      ctx.drawImage(layer.line, 0, 0);
-    } else {
-      this.pathLayer.forget();
+  /** The hatch over the searched cells, view-sized, remade when the mask or the geometry changes. */
+  hatched(mask, n, gridPx, tiles) {
+    const h = this.hatch;
+    const sig = [mask.key, n, this.canvas.width, this.origin, tiles.length].join('|');
+    if (mask.key === undefined || sig !== h.sig) {
+      const off = this.upload(7, mask, n);
+      h.canvas ??= document.createElement('canvas');
+      h.canvas.width = this.canvas.width;
+      h.canvas.height = this.canvas.height;
+      const c = h.canvas.getContext('2d');
+      c.imageSmoothingEnabled = false;
+      for (const ty of tiles) for (const tx of tiles) c.drawImage(off.canvas, 0, 0, n, n, this.origin + tx * gridPx, this.origin + ty * gridPx, gridPx, gridPx);
+      c.globalCompositeOperation = 'source-in';
+      c.fillStyle = c.createPattern(hatchTile(Math.round(6 * this.dpr)), 'repeat');
+      c.fillRect(0, 0, h.canvas.width, h.canvas.height);
+      h.sig = sig;
     }
+    return h.canvas;
+  }
 
-    // A planner's path ahead: dashed, over the path it continues.
-    if (scene.intent && scene.intent.length > 1) {
-      const p = new Path2D();
-      appendWrapPath(p, scene.intent, 0, scene.intent.length, n);
-      eachTile(() => {
-        ctx.setLineDash([lw(Math.max(3, cs * 0.5)), lw(Math.max(3, cs * 0.35))]);
-        ctx.strokeStyle = COLORS.intent;
-        ctx.lineWidth = lw(Math.max(1.5, Math.min(cs * 0.2, 4)));
-        ctx.stroke(p);
-        ctx.setLineDash([]);
-      });
-    }
-
-    const markerR = Math.max(0.3, 5 / cs); // at least 5 device px
-    const ring = (idx, r, color, width, dash) => {
-      const [x, y] = cellXY(idx, n);
-      ctx.beginPath();
-      ctx.arc(x + 0.5, y + 0.5, r, 0, 2 * Math.PI);
-      ctx.setLineDash(dash ? dash.map(lw) : []);
-      ctx.strokeStyle = color;
-      ctx.lineWidth = lw(width);
-      ctx.stroke();
-      ctx.setLineDash([]);
-    };
-    eachTile(() => {
-      // Start: a square outline.
-      if (scene.start >= 0) {
-        const [x, y] = cellXY(scene.start, n);
-        const h = Math.max(0.45, markerR);
-        ctx.strokeStyle = COLORS.start;
-        ctx.lineWidth = lw(2);
-        ctx.strokeRect(x + 0.5 - h, y + 0.5 - h, 2 * h, 2 * h);
+  /**
+   * The rollout trails. Each is rastered once into a view-sized canvas of
+   * its own (a trail is kept on the board for several hundred ms) and
+   * blitted at its current strength: stroking thousands of segments again
+   * every frame cost more than the frame had without a GPU.
+   */
+  drawTrails(scene, px) {
+    const trails = (scene.trails || []).filter((t) => t.cells.length > 1);
+    const cache = this.trailCache;
+    const sig = [this.canvas.width, scene.n, this.origin, this.tiling].join('|');
+    for (const key of cache.keys()) if (!trails.some((t) => t.cells === key)) cache.delete(key);
+    if (!trails.length) return;
+    this.drawn.add('rollout');
+    const ctx = this.ctx;
+    ctx.save();
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    for (const t of trails) {
+      let c = cache.get(t.cells);
+      if (!c || c.sig !== sig) {
+        c = { sig, canvas: c?.canvas ?? document.createElement('canvas') };
+        c.canvas.width = this.canvas.width;
+        c.canvas.height = this.canvas.height;
+        const tc = c.canvas.getContext('2d');
+        tc.lineCap = 'round';
+        tc.lineJoin = 'round';
+        const gridPx = scene.n * this.cell;
+        if (!this.tiling) {
+          tc.beginPath();
+          tc.rect(this.origin, this.origin, gridPx, gridPx);
+          tc.clip();
+        }
+        forEachTile(tc, this.cell, this.origin, gridPx, this.tiling ? [-1, 0, 1] : [0], () => drawTrail(tc, t.cells, scene.n, 1, px));
+        cache.set(t.cells, c);
       }
-      // Practice target of the current loop: a small diamond.
-      if (scene.practice >= 0) {
-        const [x, y] = cellXY(scene.practice, n);
-        const h = Math.max(0.4, markerR * 0.9);
-        ctx.beginPath();
-        ctx.moveTo(x + 0.5, y + 0.5 - h);
-        ctx.lineTo(x + 0.5 + h, y + 0.5);
-        ctx.lineTo(x + 0.5, y + 0.5 + h);
-        ctx.lineTo(x + 0.5 - h, y + 0.5);
-        ctx.closePath();
-        ctx.strokeStyle = COLORS.practice;
-        ctx.lineWidth = lw(1.5);
-        ctx.stroke();
-      }
-      // Target: a cross in a ring, only when found or revealed.
-      if (scene.showTarget && scene.target >= 0) {
-        const [x, y] = cellXY(scene.target, n);
-        const h = Math.max(0.5, markerR * 1.2);
-        ctx.beginPath();
-        ctx.moveTo(x + 0.5 - h, y + 0.5 - h);
-        ctx.lineTo(x + 0.5 + h, y + 0.5 + h);
-        ctx.moveTo(x + 0.5 + h, y + 0.5 - h);
-        ctx.lineTo(x + 0.5 - h, y + 0.5 + h);
-        ctx.strokeStyle = '#000';
-        ctx.lineWidth = lw(4);
-        ctx.stroke();
-        ctx.strokeStyle = COLORS.target;
-        ctx.lineWidth = lw(2.2);
-        ctx.stroke();
-        ring(scene.target, h * 1.25, COLORS.target, 2);
-      }
-      // Searcher: a filled disc, plus its vision radius when visible.
-      if (scene.position >= 0) {
-        const [x, y] = cellXY(scene.position, n);
-        if (scene.rv > 0 && scene.rv * cs >= 6) ring(scene.position, scene.rv + 0.5, 'rgba(255,255,255,0.5)', 1, [3, 3]);
-        ctx.beginPath();
-        ctx.arc(x + 0.5, y + 0.5, Math.max(0.3, markerR), 0, 2 * Math.PI);
-        ctx.fillStyle = COLORS.searcher;
-        ctx.fill();
-        ctx.strokeStyle = '#000';
-        ctx.lineWidth = lw(1.5);
-        ctx.stroke();
-      }
-    });
-
-    // Decision arrows around the searcher (main tile only).
-    const d = scene.decision;
-    if (d && scene.position >= 0 && d.visits) {
-      ctx.setTransform(cs, 0, 0, cs, this.origin, this.origin);
-      const total = d.visits.reduce((a, b) => a + b, 0) || 1;
-      const [x, y] = cellXY(scene.position, n);
-      const maxLen = Math.max(1.6, 28 / cs);
-      for (let m = 0; m < 4; m++) {
-        const share = d.visits[m] / total;
-        if (share <= 0) continue;
-        const [ddx, ddy] = MOVE_DELTAS[m];
-        const len = 0.6 + maxLen * share;
-        const x0 = x + 0.5 + ddx * 0.55;
-        const y0 = y + 0.5 + ddy * 0.55;
-        const x1 = x + 0.5 + ddx * len;
-        const y1 = y + 0.5 + ddy * len;
-        const chosen = d.leading[m];
-        const w = lw(chosen ? 3.5 : 2);
-        ctx.strokeStyle = '#000';
-        ctx.lineWidth = w + lw(2);
-        arrow(ctx, x0, y0, x1, y1, lw(7));
-        ctx.strokeStyle = chosen ? COLORS.chosen : COLORS.arrow;
-        ctx.lineWidth = w;
-        arrow(ctx, x0, y0, x1, y1, lw(7));
-      }
+      ctx.globalAlpha = t.alpha;
+      ctx.drawImage(c.canvas, 0, 0);
     }
     ctx.restore();
+  }
 
-    // Faded copies around the main grid in the periodic view.
+  /** The searcher's path, with a dark halo so it reads on any heat layer (glowing once found). */
+  drawPath(scene, gridPx, tiles) {
+    const ctx = this.ctx;
+    const layer = this.pathLayer;
+    if (!scene.path || scene.pathLen < 2) {
+      layer.forget();
+      return false;
+    }
+    const cs = this.cell;
+    const pending = !layer.update(scene.path, scene.pathLen, scene.n, {
+      width: this.canvas.width,
+      height: this.canvas.height,
+      cell: cs,
+      origin: this.origin,
+      gridPx,
+      tiles,
+      key: scene.pathKey,
+      lineWidth: Math.max(2 * this.dpr, Math.min(cs * 0.28, 6 * this.dpr)),
+    });
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(layer.halo, 0, 0);
+    if (scene.highlight) ctx.filter = `drop-shadow(0 0 ${Math.round(4 * this.dpr)}px ${INK.white})`;
+    ctx.drawImage(layer.line, 0, 0);
+    ctx.filter = 'none';
+    this.drawn.add('path');
+    return pending;
+  }
+
+  /** A planner's path ahead: dashed, over the path it continues. */
+  drawIntent(scene, eachTile, px) {
+    if (!scene.intent || scene.intent.length < 2) return;
+    const ctx = this.ctx;
+    const p = new Path2D();
+    appendWrapPath(p, scene.intent, 0, scene.intent.length, scene.n);
+    this.drawn.add('planned');
+    eachTile(() => {
+      const w = Math.max(1.5 * px, Math.min(0.2, 4 * px));
+      ctx.setLineDash([Math.max(4 * px, 0.5), Math.max(3 * px, 0.35)]);
+      ctx.strokeStyle = COLORS.rim;
+      ctx.lineWidth = w + 2 * px;
+      ctx.stroke(p);
+      ctx.strokeStyle = INK.next;
+      ctx.lineWidth = w;
+      ctx.stroke(p);
+      ctx.setLineDash([]);
+    });
+  }
+
+  /** Start, practice target, target (with the found pulse) and the selected cell, in every tile. */
+  drawMarks(scene, eachTile, px) {
+    const ctx = this.ctx;
+    const n = scene.n;
+    const h = Math.max(0.42, 6 * px);
+    const at = (idx) => cellXY(idx, n).map((v) => v + 0.5);
+    eachTile(() => {
+      if (scene.start >= 0) paintStart(ctx, ...at(scene.start), h, px);
+      if (scene.practice >= 0) paintPractice(ctx, ...at(scene.practice), h * 1.1, px);
+      if (scene.showTarget && scene.target >= 0) {
+        paintTarget(ctx, ...at(scene.target), h, px);
+        for (const t of scene.pulses || []) paintPulse(ctx, ...at(scene.target), h, t, px);
+      }
+      if (scene.selected >= 0) paintSelected(ctx, ...at(scene.selected), Math.max(0.5, 7 * px), px);
+    });
+    if (scene.start >= 0) this.drawn.add('start');
+    if (scene.practice >= 0) this.drawn.add('practice');
+    if (scene.showTarget && scene.target >= 0) this.drawn.add('target');
+    if (scene.selected >= 0) this.drawn.add('selected');
+  }
+
+  /**
+   * The searcher at its (gliding) point, with its vision disc and decision
+   * arrows: on the main grid, plus a ghost across each edge it overlaps, so
+   * at a wrap it leaves one edge and enters the other.
+   */
+  drawSearcher(scene, px) {
+    if (scene.position < 0) return;
+    const ctx = this.ctx;
+    const n = scene.n;
+    const [x, y] = scene.at ?? cellXY(scene.position, n).map((v) => v + 0.5);
+    this.at = [x, y];
+    const r = Math.max(0.32, 6 * px);
+    const vision = scene.rv > 0 && scene.rv * this.cell >= 6 * this.dpr;
+    const reach = Math.max(r + 5 * px, vision ? scene.rv + 0.5 : 0, 2);
+    ctx.setTransform(this.cell, 0, 0, this.cell, this.origin, this.origin);
+    const shifts = this.tiling ? [0] : [-n, 0, n];
+    for (const oy of shifts) {
+      for (const ox of shifts) {
+        const cx = x + ox;
+        const cy = y + oy;
+        if (cx < -reach || cy < -reach || cx > n + reach || cy > n + reach) continue;
+        if (vision) paintVision(ctx, cx, cy, scene.rv + 0.5, px);
+        if (ox === 0 && oy === 0) this.drawArrows(scene.decision, cx, cy, px);
+        paintSearcher(ctx, cx, cy, r, px);
+      }
+    }
+    if (vision) this.drawn.add('vision');
+    this.drawn.add('searcher');
+  }
+
+  /** Decision arrows around the searcher: length by the share of picks, the leading move thick. */
+  drawArrows(d, x, y, px) {
+    if (!d?.visits) return;
+    const total = d.visits.reduce((a, b) => a + b, 0) || 1;
+    const maxLen = Math.max(1.6, 28 * px);
+    for (let m = 0; m < 4; m++) {
+      const share = d.visits[m] / total;
+      if (share <= 0) continue;
+      const [dx, dy] = MOVE_DELTAS[m];
+      const len = 0.6 + maxLen * share;
+      paintArrow(this.ctx, x + dx * 0.55, y + dy * 0.55, x + dx * len, y + dy * len, d.leading[m], px);
+      this.drawn.add('arrows');
+    }
+  }
+
+  /** The periodic view's faded copies, grid lines and frame. */
+  drawFrame(scene, gridPx) {
+    const ctx = this.ctx;
+    const cs = this.cell;
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     if (this.tiling) {
       ctx.fillStyle = COLORS.fade;
@@ -453,11 +372,9 @@ export class Renderer {
       ctx.fillRect(0, this.origin, this.origin, gridPx);
       ctx.fillRect(this.origin + gridPx, this.origin, this.size - this.origin - gridPx, gridPx);
     }
-
-    // Grid lines when cells are big enough.
     if (scene.grid !== false && cs >= 7) {
       const p = new Path2D();
-      const span = this.tiling ? 3 * n : n;
+      const span = this.tiling ? 3 * scene.n : scene.n;
       const total = span * cs;
       for (let i = 0; i <= span; i++) {
         const v = Math.round(i * cs) + 0.5;
@@ -475,7 +392,6 @@ export class Renderer {
       ctx.lineWidth = 2;
       ctx.strokeRect(this.origin, this.origin, gridPx, gridPx);
     }
-    return pending;
   }
 }
 
@@ -490,17 +406,6 @@ export function drawNotice(canvas, text) {
   ctx.textAlign = 'center';
   ctx.textBaseline = 'middle';
   ctx.fillText(text, canvas.width / 2, canvas.height / 2, canvas.width * 0.9);
-}
-
-function arrow(ctx, x0, y0, x1, y1, head) {
-  const ang = Math.atan2(y1 - y0, x1 - x0);
-  ctx.beginPath();
-  ctx.moveTo(x0, y0);
-  ctx.lineTo(x1, y1);
-  ctx.moveTo(x1 - head * Math.cos(ang - 0.5), y1 - head * Math.sin(ang - 0.5));
-  ctx.lineTo(x1, y1);
-  ctx.lineTo(x1 - head * Math.cos(ang + 0.5), y1 - head * Math.sin(ang + 0.5));
-  ctx.stroke();
 }
 
 /** Draws a horizontal colour bar from a 256×4 RGBA lookup table into a small canvas. */

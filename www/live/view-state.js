@@ -1,14 +1,20 @@
-// What the page shows, as opposed to what it runs: the heat layers (one
-// checkbox per layer the engine's schema lists), the log scale, the path,
-// rollout traces, arrows, grid, reveal and the periodic view. It turns them
-// into the frame request the controller sends with each frame.
+// What the page shows, as opposed to what it runs: ONE heat layer at a time
+// (a switch of chips by the board, one per layer of the engine's schema that
+// the run has; clicking the one shown turns the colours off), the yes/no
+// layers as a hatch over it (never a second colour ramp), the log scale, the
+// path, rollout traces, arrows, grid, reveal and the periodic view. It turns
+// them into the frame request the controller sends with each frame.
 
 import { $ } from '../shared/ui.js';
 
-/** Heat layers ticked on first load. */
-const DEFAULT_LAYERS = ['prior', 'visits'];
+/** The heat layer shown on first load. */
+const DEFAULT_HEAT = 'prior';
+/** The teaching view's heat layer: the visits of the imagined searches. */
+const TEACHING_HEAT = 'visits';
 const OPTION_IDS = ['layer-path', 'layer-intent', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
 const TRACE_IDS = ['layer-rollouts', 'layer-practice'];
+/** A yes/no layer is a mask for the hatch: opaque where yes. */
+const MASK_ALPHA = [0, 255];
 
 export class ViewState {
   /**
@@ -19,24 +25,57 @@ export class ViewState {
    */
   constructor(schema, on) {
     this.layers = schema.layers;
-    const box = $('layer-checks');
-    const frag = document.createDocumentFragment();
+    this.heats = this.layers.filter((l) => !l.binary);
+    this.masks = new Set(this.layers.filter((l) => l.binary).map((l) => l.name));
+    const chips = document.createDocumentFragment();
+    const checks = document.createDocumentFragment();
     for (const l of this.layers) {
       const label = document.createElement('label');
       const input = document.createElement('input');
       input.type = 'checkbox';
       input.id = `layer-${l.name}`;
-      input.checked = DEFAULT_LAYERS.includes(l.name);
-      input.addEventListener('change', on.redraw);
-      label.append(input, ` ${l.label}`);
-      frag.append(label);
+      input.dataset.layer = l.name;
+      if (l.binary) {
+        label.append(input, ` ${l.label} (hatched)`);
+        input.addEventListener('change', on.redraw);
+        checks.append(label);
+      } else {
+        label.className = 'chip';
+        input.checked = l.name === DEFAULT_HEAT;
+        label.append(input, ` ${l.label}`);
+        input.addEventListener('change', () => this.pick(input.checked ? l.name : null, on.redraw));
+        chips.append(label);
+      }
     }
-    box.prepend(frag);
+    $('heat-switch').append(chips);
+    $('layer-checks').prepend(checks);
     for (const id of OPTION_IDS) $(id).addEventListener('change', on.redraw);
     for (const id of TRACE_IDS) $(id).addEventListener('change', on.traces);
   }
 
-  /** Heat layers to draw, bottom to top, as frame requests. */
+  /** Shows heat layer `name` alone (null: none). */
+  pick(name, then = () => {}) {
+    for (const l of this.heats) $(`layer-${l.name}`).checked = l.name === name;
+    then();
+  }
+
+  /** The heat layer shown, or null. */
+  heat() {
+    return this.heats.find((l) => $(`layer-${l.name}`).checked)?.name ?? null;
+  }
+
+  /**
+   * Shows a chip for each heat layer the run has (`names`: the engine's
+   * list); a heat layer it lacks gives way to the first it has.
+   */
+  setAvailable(names) {
+    const has = new Set(names);
+    for (const l of this.heats) $(`layer-${l.name}`).closest('label').hidden = !has.has(l.name);
+    const heat = this.heat();
+    if (heat && !has.has(heat)) this.pick(this.heats.find((l) => has.has(l.name))?.name ?? null);
+  }
+
+  /** Layers to draw, bottom to top, as frame requests: the heat layer, then the hatched ones. */
   layerRequests() {
     const log = $('log-scale').checked;
     return this.layers
@@ -44,8 +83,9 @@ export class ViewState {
       .map((l) => ({
         layer: l.name,
         palette: l.palette,
-        scale: l.counts ? (log ? 'log' : 'stretch') : 'linear',
-        alpha: l.alpha,
+        // Counts from 0, linear or logarithmic: never from their minimum.
+        scale: l.counts && log ? 'log' : 'linear',
+        alpha: l.binary ? MASK_ALPHA : l.alpha,
       }));
   }
 
@@ -79,11 +119,13 @@ export class ViewState {
       grid: $('layer-grid').checked,
       reveal: $('reveal').checked,
       tiling: $('tiling').checked,
+      masks: this.masks,
     };
   }
 
   /** Ticks the layers and options of the teaching view. */
   teaching() {
-    for (const id of ['layer-rollouts', 'layer-practice', 'layer-intent', 'layer-visits', 'layer-prior', 'layer-arrows', 'layer-grid']) $(id).checked = true;
+    for (const id of ['layer-rollouts', 'layer-practice', 'layer-intent', 'layer-arrows', 'layer-grid']) $(id).checked = true;
+    this.pick(TEACHING_HEAT);
   }
 }

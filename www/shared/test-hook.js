@@ -12,6 +12,13 @@
 //   dispatch(cmd)      a controller command (see www/live/controller.js)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
+//   resets()           how many resets the controller has had (a click that restarted the run adds one)
+//   drawn(i = 0)       what the last frame drew on board i: { marks: [MARKS keys of www/live/marks.js],
+//                      layers: [heat and hatched layer names], uploads (putImageData calls so far),
+//                      at: [x, y] the searcher's point in cell units (a cell's centre is x + 0.5) }
+//   legend()           what the legend names now: { marks: [data-mark], layers: [data-layer] }
+//   watchFrames()      starts a fresh frameLog(): per drawn frame { ticket, ts, runs: [{ start,
+//                      configStart, path0, position, status }], marks and at (board 0's: see drawn) }
 //   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers
 //   view()             which view is shown: live | experiments; show(view) switches
 //   experiments        the Experiments view:
@@ -30,7 +37,7 @@
 
 import { experimentSpec } from './url-state.js';
 
-export function installTestHook({ controller, engine, batch, experiments, showView }) {
+export function installTestHook({ controller, engine, batch, experiments, showView, boards }) {
   // What each drawn frame showed, once a test asks (bounded, so a long soak
   // does not grow it): the reset ticket, and per run its configured start,
   // the first path cell and the position.
@@ -40,6 +47,9 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     if (frameLog.length >= 10_000) frameLog.shift();
     frameLog.push({
       ticket: controller.resets,
+      ts: performance.now(),
+      marks: boards.drawnMarks(0),
+      at: boards.renderers[0].at,
       runs: runs.map((r) => ({ start: r.start, configStart: r.config.start.join(','), path0: r.pathLen ? r.pathView()[0] : -1, position: r.frame.position, status: r.status() })),
     });
   });
@@ -75,6 +85,12 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     dispatch: (cmd) => controller.dispatch(cmd),
     request: (type, payload) => controller.dispatch({ type: 'request', request: type, payload }),
     engine,
+    resets: () => controller.resets,
+    drawn: (i = 0) => ({ marks: boards.drawnMarks(i), layers: [...boards.renderers[i].drawnLayers], uploads: boards.renderers[i].uploads, at: boards.renderers[i].at }),
+    legend: () => ({
+      marks: [...document.querySelectorAll('#legend [data-mark]')].map((e) => e.dataset.mark),
+      layers: [...document.querySelectorAll('#legend [data-layer]')].filter((e) => !e.hidden).map((e) => e.dataset.layer),
+    }),
     batch: {
       results: () => batch.results,
       usePool: (k) => batch.usePool(k),

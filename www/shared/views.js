@@ -18,6 +18,7 @@ export class PageViews {
     this.deferredPlay = autoplay && page !== 'live';
     $('tab-live').addEventListener('click', () => this.show('live'));
     $('tab-experiments').addEventListener('click', () => this.show('experiments'));
+    $('message-close').addEventListener('click', () => ($('message').hidden = true));
   }
 
   /** Writes the shown view's query into the address bar. */
@@ -31,6 +32,11 @@ export class PageViews {
     this.page = page;
     if (!play) this.deferredPlay = false;
     document.body.dataset.view = page;
+    // The message goes with the view shown: beside the board in the live
+    // view (never above it), at the top of the Experiments view.
+    const box = $('message').parentElement;
+    if (page === 'live') $('live').querySelector('.side').prepend(box);
+    else $(page).prepend(box);
     $('live').hidden = page !== 'live';
     $('experiments').hidden = page !== 'experiments';
     $('tab-live').setAttribute('aria-pressed', String(page === 'live'));

@@ -1,6 +1,7 @@
-// The statistics panel, the result banner over each board and the race
-// scoreboard. Every number comes from a run's latest frame (the engine
-// computed it) or from the controller's meter.
+// The statistics panel, the result over each board (in plain words), the
+// race scoreboard, and the board's text description. Every number comes
+// from a run's latest frame (the engine computed it) or from the
+// controller's meter.
 
 import { $, setText, fmtInt, fmtRate } from '../../shared/ui.js';
 
@@ -11,15 +12,35 @@ const fmtRatio = (r) => (r === null || r === undefined ? '–' : r.toFixed(2));
 export const planningText = (p) =>
   `${p.stage} ${p.total ? `${p.done} of ${p.total}` : p.done}${p.inner_unit ? ` (${fmtInt(p.inner)} ${p.inner_unit})` : ''}`;
 
-function resultLine(run) {
+const steps = (k) => `${fmtInt(k)} step${k === 1 ? '' : 's'}`;
+
+/** A cell as people count it: (x, y) from 1. */
+export const cellText = (idx, n) => `(${(idx % n) + 1}, ${Math.floor(idx / n) + 1})`;
+
+/** What a finished run found, in plain words (the bound is the engine's, for this prior). */
+export function resultLine(run) {
   const f = run.frame;
   // A plan made once gets the banner; a decision made every move (rollout
   // improvement) shows in the statistics instead, or the banner would
   // blink at every move.
   if (f.planning && !f.planning.per_move) return `Planning: ${planningText(f.planning)}…`;
-  if (f.status === 'found') return `Found in ${f.steps} steps (optimal ${run.optimal}, ratio ${f.ratio === null ? '—' : f.ratio.toFixed(2)})`;
-  if (f.status === 'capped') return `Step cap reached after ${f.steps} steps: not found`;
+  const bound = `Over many targets from this prior, no searcher can average fewer than ${run.lower_bound.toFixed(1)} steps.`;
+  if (f.status === 'found') {
+    if (run.optimal === 0) return `Found in ${steps(f.steps)}: the target was in sight from the start. ${bound}`;
+    return `Found in ${steps(f.steps)}. The shortest path was ${steps(run.optimal)}. ${bound}`;
+  }
+  if (f.status === 'capped') return `Step cap reached after ${steps(f.steps)}: not found. The shortest path was ${steps(run.optimal)}.`;
   return '';
+}
+
+/** The board's description for screen readers (and the line under the board). */
+export function describeRun(run) {
+  const f = run.frame;
+  const where = cellText(f.position, run.n);
+  const searched = `${(100 * f.searched_mass).toFixed(1)}% of the prior searched`;
+  if (f.status === 'found') return `Found the target at ${cellText(run.target, run.n)} after ${steps(f.steps)}; ${searched}.`;
+  if (f.status === 'capped') return `Stopped at the step cap at ${where} after ${steps(f.steps)}; ${searched}.`;
+  return `Searcher at ${where} after ${steps(f.steps)}; ${searched}.`;
 }
 
 /** Updates the statistics of the main run, the banners and (in a race) the scoreboard. */
@@ -44,12 +65,16 @@ export function updateStats(runs, meter, { reveal }) {
   setText('steps-per-s', fmtRate(meter.stepsPerS));
   setText('fps', meter.fps.toFixed(0));
   runs.forEach((r, i) => {
-    const banner = $(`board-${i}`).querySelector('.banner');
+    const board = $(`board-${i}`);
+    const banner = board.querySelector('.banner');
     const line = resultLine(r);
     banner.hidden = !line;
     banner.classList.toggle('capped', r.frame.status === 'capped');
     banner.classList.toggle('planning', !!r.frame.planning && !r.frame.planning.per_move);
     setText(banner, line);
+    // Over the half of the board away from the target, so the found moment shows.
+    const row = Math.floor(r.target / r.n);
+    board.querySelector('.result').dataset.at = row < r.n / 2 ? 'bottom' : 'top';
   });
   if (runs.length > 1) updateScoreboard(runs, reveal);
 }
