@@ -22,11 +22,15 @@ use crate::game::rng;
 use crate::searchers::decision::{ChildStat, DecisionView, Planning};
 use crate::searchers::mcts::plan_walk::PlanWalk;
 use crate::searchers::mcts::uct::argmax_random;
-use crate::searchers::mcts::variant::{LoopEnv, LoopReport, Stats};
+use crate::searchers::mcts::variant::{note_rollout, trace_len, LoopEnv, LoopReport, Stats};
+use crate::searchers::phase::{
+    BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
+};
 use crate::searchers::planning::completion::{Completion, SLICE_WORK};
 use crate::searchers::planning::coverage_walk::CoverageWalk;
 use crate::searchers::planning::lookahead::Lookahead;
 use crate::searchers::planning::plan_cache::{self, PlanKey};
+use crate::searchers::tree_export::{export_arena, Arena, TreeError, TreeExport, TreeQuery};
 use count::Count;
 use node::{Node, NONE};
 use params::ReturnScale;
@@ -87,6 +91,37 @@ pub struct BeliefTree {
     /// A new plan being made in slices, before the decision's first loop,
     /// and the key it is kept under once made.
     making: Option<(Completion, PlanKey)>,
+    /// The loop in flight: its running count, the node reached, the
+    /// simulated moves of its tree path, and whether its rollout was cut.
+    count: Count,
+    node: u32,
+    path_t: u32,
+    cut: bool,
+}
+
+/// What the belief MCTS's counts mean, for people.
+const NOTE: &str = "pomcp (the belief MCTS): N counts the loops through a node, kept across real moves with its subtree; a node's value is its mean return scaled to [0, 1] (higher is better), as the decision panel shows; picks are this decision's selections at the root";
+
+/// The tree as [`Arena`] reads it, with its values.
+struct View<'a>(&'a BeliefTree);
+
+impl Arena for View<'_> {
+    fn len(&self) -> usize {
+        self.0.nodes.len()
+    }
+    fn children(&self, id: u32) -> [u32; 4] {
+        self.0.nodes[id as usize].children
+    }
+    fn visits(&self, id: u32) -> u32 {
+        self.0.nodes[id as usize].visits
+    }
+    fn cell(&self, id: u32) -> u32 {
+        self.0.nodes[id as usize].cell
+    }
+    fn value(&self, id: u32) -> Option<f64> {
+        let n = &self.0.nodes[id as usize];
+        (n.visits > 0).then(|| self.0.value(n))
+    }
 }
 
 impl BeliefTree {
@@ -130,6 +165,10 @@ impl BeliefTree {
             replay: false,
             planned: None,
             making: None,
+            count: Count::default(),
+            node: 0,
+            path_t: 0,
+            cut: false,
         }
     }
 
@@ -412,60 +451,146 @@ impl BeliefTree {
         }
     }
 
-    /// Selection and expansion: down the tree by UCT from the root (along
-    /// the plan when the loop replays it), until a node is added.
-    fn descend(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) {
-        let mut node = 0u32;
-        while !count.done() {
-            let cur = self.nodes[node as usize];
-            let mut miss = [0usize; 4];
-            let mut k = 0;
-            for i in 0..4 {
-                if cur.children[i] == NONE {
-                    miss[k] = i;
-                    k += 1;
+    /// The index of the move the plan forces at `node` (the root, while
+    /// the decision's loop replays the plan).
+    fn forced(&self, torus: &Torus, node: u32) -> Option<usize> {
+        if self.replay && node == 0 {
+            self.plan_move(torus, self.nodes[node as usize].cell)
+        } else {
+            None
+        }
+    }
+
+    /// True when the descent at `node` would add a node (or follow the
+    /// plan) rather than select among children by UCT.
+    fn expands_at(&self, torus: &Torus, node: u32) -> bool {
+        self.forced(torus, node).is_some()
+            || (self.nodes.len() < self.max_nodes
+                && self.nodes[node as usize].children.contains(&NONE))
+    }
+
+    /// The four moves at `node` as [`BeliefTree::select_child`] saw them.
+    fn candidates(&self, torus: &Torus, node: u32, c: f64) -> [Candidate; 4] {
+        let n = &self.nodes[node as usize];
+        std::array::from_fn(|i| {
+            let m = Move::ALL[i];
+            match n.children[i] {
+                NONE => Candidate::missing(m, torus.step(n.cell, m)),
+                k => {
+                    let ch = &self.nodes[k as usize];
+                    let q = self.value(ch) * ch.visits as f64;
+                    let stat = ChildStat::new(ch.cell, ch.visits, q, n.visits, c, 0);
+                    Candidate::of(m, &stat, Some(k))
                 }
             }
-            let forced = if self.replay && node == 0 {
-                self.plan_move(env.torus, cur.cell)
-            } else {
-                None
-            };
-            let (i, id, expanded) = if let Some(i) = forced {
-                // The plan's loop: its first cell, then the plan walk uncut.
-                if cur.children[i] == NONE {
-                    if self.nodes.len() >= self.max_nodes {
-                        self.replay = false;
-                        break;
-                    }
-                    let id = self.nodes.len() as u32;
-                    self.nodes
-                        .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
-                    self.nodes[node as usize].children[i] = id;
-                }
-                (i, self.nodes[node as usize].children[i], true)
-            } else if k > 0 && self.nodes.len() < self.max_nodes {
-                let i = miss[rng::below(env.rng, k as u32) as usize];
-                let id = self.nodes.len() as u32;
-                self.nodes
-                    .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
-                self.nodes[node as usize].children[i] = id;
-                (i, id, true)
-            } else {
-                match self.select_child(node, env) {
-                    Some(i) => (i, cur.children[i], false),
-                    None => break,
-                }
+        })
+    }
+
+    /// Selection: down the tree by UCT from the root while the node
+    /// reached is full (or the arena is), until nothing is left to count.
+    fn descend(
+        &mut self,
+        env: &mut LoopEnv<'_>,
+        count: &mut Count,
+        mut rec: Option<&mut PhaseRecord>,
+    ) {
+        let mut node = 0u32;
+        while !count.done() && !self.expands_at(env.torus, node) {
+            let cands = rec
+                .as_ref()
+                .map(|_| self.candidates(env.torus, node, env.c));
+            let Some(i) = self.select_child(node, env) else {
+                break;
             };
             if node == 0 {
                 self.selected[i] += 1;
             }
-            node = id;
-            self.path.push(id);
-            count.advance_to(env, &mut self.cov, self.nodes[id as usize].cell);
-            if expanded {
-                break;
+            if let (Some(r), Some(cands)) = (rec.as_deref_mut(), cands) {
+                let n = &self.nodes[node as usize];
+                let level = SelectLevel::new(node, n.cell, n.visits, cands, i, SelectRule::Uct);
+                r.select.push(level);
             }
+            node = self.nodes[node as usize].children[i];
+            self.path.push(node);
+            count.advance_to(env, &mut self.cov, self.nodes[node as usize].cell);
+        }
+        self.node = node;
+    }
+
+    /// Expansion: the node reached gets a child by a random untried move
+    /// (or the plan's move, while the loop replays the plan).
+    fn grow(&mut self, env: &mut LoopEnv<'_>, count: &mut Count, rec: Option<&mut PhaseRecord>) {
+        let node = self.node;
+        let cur = self.nodes[node as usize];
+        let k = cur.children.iter().filter(|&&c| c == NONE).count();
+        let nothing = |what: &'static str| Expansion {
+            node: None,
+            parent: node,
+            mv: None,
+            cell: cur.cell,
+            untried: k as u8,
+            what,
+        };
+        if count.done() || !self.expands_at(env.torus, node) {
+            if let Some(r) = rec {
+                r.expansion = Some(nothing(if count.done() {
+                    "nothing is added: the loop has nothing left to count (the practice target is detected and the exact count has ended)"
+                } else {
+                    "nothing is added: the tree has reached its node cap"
+                }));
+            }
+            return;
+        }
+        let mut miss = [0usize; 4];
+        let mut k = 0;
+        for i in 0..4 {
+            if cur.children[i] == NONE {
+                miss[k] = i;
+                k += 1;
+            }
+        }
+        let (i, id, added, what) = if let Some(i) = self.forced(env.torus, node) {
+            // The plan's loop: its first cell, then the plan walk uncut.
+            if cur.children[i] == NONE {
+                if self.nodes.len() >= self.max_nodes {
+                    self.replay = false;
+                    if let Some(r) = rec {
+                        r.expansion = Some(nothing("nothing is added: the tree is full, so the loop no longer replays the plan"));
+                    }
+                    return;
+                }
+                let id = self.nodes.len() as u32;
+                self.nodes
+                    .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
+                self.nodes[node as usize].children[i] = id;
+            }
+            let added = cur.children[i] == NONE;
+            let what = "the plan's next move: this loop replays the plan";
+            (i, self.nodes[node as usize].children[i], added, what)
+        } else {
+            let i = miss[rng::below(env.rng, k as u32) as usize];
+            let id = self.nodes.len() as u32;
+            self.nodes
+                .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
+            self.nodes[node as usize].children[i] = id;
+            (i, id, true, "a new node, drawn among the untried moves")
+        };
+        if node == 0 {
+            self.selected[i] += 1;
+        }
+        self.node = id;
+        self.path.push(id);
+        let cell = self.nodes[id as usize].cell;
+        count.advance_to(env, &mut self.cov, cell);
+        if let Some(r) = rec {
+            r.expansion = Some(Expansion {
+                node: added.then_some(id),
+                parent: node,
+                mv: Some(Move::ALL[i]),
+                cell,
+                untried: k as u8,
+                what,
+            });
         }
     }
 
@@ -475,7 +600,7 @@ impl BeliefTree {
     /// that, every rollout would be charged the same reference tail, and
     /// the returns would not tell moves apart (all of them, with a delta
     /// prior far away).
-    fn roll_out(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) -> bool {
+    fn roll_out_count(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) -> bool {
         let (belief, sensor) = (env.belief, env.sensor);
         let depth = count.t;
         self.walk.begin_rollout();
@@ -512,13 +637,35 @@ impl BeliefTree {
     }
 
     /// Backpropagation: the return `g` to every node of the loop's path.
-    fn back_up(&mut self, g: f64) {
+    fn credit(&mut self, g: f64, rec: Option<&mut PhaseRecord>) {
+        let before: Option<Vec<(u32, f64)>> = rec.as_ref().map(|_| {
+            self.path
+                .iter()
+                .map(|&id| {
+                    let n = &self.nodes[id as usize];
+                    (n.visits, self.value(n))
+                })
+                .collect()
+        });
         for &id in &self.path {
             let n = &mut self.nodes[id as usize];
             n.visits += 1;
             n.sum += g;
             n.lo = n.lo.min(g);
             n.hi = n.hi.max(g);
+        }
+        if let (Some(r), Some(before)) = (rec, before) {
+            r.reward = g;
+            for (at, (&id, (v0, m0))) in self.path.iter().zip(before).enumerate() {
+                let n = &self.nodes[id as usize];
+                r.backup.push(BackupEntry {
+                    node: id,
+                    cell: n.cell,
+                    visits: [v0, n.visits],
+                    value: [m0, self.value(n)],
+                    picked: at == 1,
+                });
+            }
         }
         self.cov.clear();
         self.update_intent();
@@ -529,7 +676,7 @@ impl Stats for BeliefTree {
     const POSTERIOR_TARGETS: bool = true;
 
     /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
-    fn begin_decision(&mut self, root: u32, _reset: bool) {
+    fn begin_decision(&mut self, _torus: &Torus, root: u32, _reset: bool) {
         if self.nodes.first().map(|n| n.cell) != Some(root) {
             self.nodes.clear();
             self.nodes.push(Node::leaf(root));
@@ -619,29 +766,87 @@ impl Stats for BeliefTree {
         }
     }
 
-    /// One loop: descend by UCT and expand, roll out with the coverage
-    /// walk, backpropagate the return.
+    /// Selection: the loop starts (the decision's first also rescales
+    /// the kept returns and makes the reference), then descends by UCT.
     ///
     /// # Panics
     /// If called before [`Stats::begin_decision`].
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, _root: u32) -> LoopReport {
+    fn select(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
         let mut count = self.begin_loop(env);
-        self.descend(env, &mut count);
-        let depth = count.t;
-        let cut = self.roll_out(env, &mut count);
-        let steps = count.t - depth;
-        if !count.exact && !cut {
+        self.descend(env, &mut count, rec);
+        self.count = count;
+    }
+
+    fn expand(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let mut count = self.count;
+        self.grow(env, &mut count, rec);
+        self.path_t = count.t;
+        self.count = count;
+    }
+
+    /// The rollout, along the plan or by the coverage walk.
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let mut count = self.count;
+        let from = trace_len(env);
+        self.cut = self.roll_out_count(env, &mut count);
+        self.count = count;
+        if let Some(r) = rec {
+            note_rollout(
+                Some(&mut *r),
+                from,
+                count.t - self.path_t,
+                count.tau.is_some(),
+            );
+            r.cut = self.cut;
+            r.truncated = !self.cut && count.tau.is_none();
+        }
+    }
+
+    /// Backpropagation of the return: its sampled tail added unless the
+    /// rollout was cut (the reference charged it) or counted exactly.
+    fn back_up(
+        &mut self,
+        _env: &mut LoopEnv<'_>,
+        _root: u32,
+        rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport {
+        let mut count = self.count;
+        let steps = count.t - self.path_t;
+        if !count.exact && !self.cut {
             // The sampled tail: 1{τ > H}·(τ − H), or what a truncated
             // rollout saw of it.
             count.g += (count.tau.unwrap_or(count.t).max(count.h) - count.h) as f64;
         }
-        self.back_up(count.g);
+        self.credit(count.g, rec);
         LoopReport {
             rollout_steps: steps,
             detected: count.tau.is_some(),
             reward: count.g,
             counts: true,
         }
+    }
+
+    fn tree(
+        &self,
+        _torus: &Torus,
+        _root: u32,
+        _c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError> {
+        export_arena(&View(self), self.selected, q, NOTE)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(&self.nodes[..])
+            + size_of_val(&self.path[..])
+            + size_of_val(&self.ref_r[..])
+            + size_of_val(&self.ref_tail[..])
+            + self.cov.heap_bytes()
+            + size_of_val(&self.intent[..])
+            + size_of_val(&self.plan[..])
+            + size_of_val(&self.cand[..])
+            + size_of_val(&self.line[..])
     }
 
     /// Re-roots the tree at the child reached by `m`, keeping its subtree;
