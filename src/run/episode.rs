@@ -205,6 +205,8 @@ pub struct Episode {
     phased: Option<TimePoint>,
     /// Rollouts before the decision under way (the last real move's count).
     decision_rollouts: u64,
+    /// The trial's index in its batch.
+    index: u64,
 }
 
 impl Episode {
@@ -261,6 +263,7 @@ impl Episode {
             blind: false,
             phased: None,
             decision_rollouts: 0,
+            index,
             sensor,
             torus,
         };
@@ -687,7 +690,46 @@ impl Episode {
             blind: self.blind,
             phased: self.phased,
             decision_rollouts: self.decision_rollouts,
+            index: self.index,
         })
+    }
+
+    /// The run at its start again (the same trial, detection and clock).
+    ///
+    /// # Errors
+    /// A [`ParamError`] naming the first invalid field (none for a config
+    /// that built this run).
+    pub fn restart(&self) -> Result<Episode, ParamError> {
+        let mut ep = Episode::trial(&self.cfg, self.index)?;
+        if self.blind {
+            ep.blind = true;
+            ep.status = Status::Running;
+        }
+        ep.set_clock(self.budget.clock());
+        Ok(ep)
+    }
+
+    /// The clock time budgets read.
+    pub fn clock(&self) -> fn() -> f64 {
+        self.budget.clock()
+    }
+
+    /// The time budget of a decision, if decisions are timed (then runs
+    /// depend on the machine and do not replay).
+    pub fn timed(&self) -> Option<f64> {
+        self.budget.ms()
+    }
+
+    /// Forgets the phase of the last step (a snapshot at a move keeps the
+    /// state, not how it was reached).
+    pub(crate) fn forget_phase(&mut self) {
+        self.phased = None;
+    }
+
+    /// Work done so far, as a count comparable with bytes copied: rollout
+    /// steps, and 64 for each rollout and move.
+    pub fn work_done(&self) -> u64 {
+        self.counters.rollout_steps + 64 * (self.counters.rollouts + self.steps() as u64)
     }
 
     /// Bytes the run holds (what a snapshot copies), approximately.

@@ -3,3 +3,4 @@
 pub mod batch;
 pub mod episode;
 pub mod race;
+pub mod timeline;

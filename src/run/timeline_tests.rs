@@ -1,0 +1,36 @@
+//! Thinning the snapshots.
+
+use super::*;
+use crate::config::Config;
+
+#[test]
+fn thinning_keeps_every_other_snapshot_and_doubles_the_spacing() {
+    let cfg = Config {
+        n: 10,
+        sigma: 2.0,
+        ..Config::default()
+    }
+    .with(&[("loops", "8")]);
+    let mut ep = Episode::new(&cfg).unwrap();
+    // No spacing and no cap: a snapshot at every move.
+    let mut tl = Timeline::with_spacing(&ep, usize::MAX, 0);
+    for _ in 0..6 {
+        ep.step_move();
+        tl.note(&ep);
+    }
+    let moves = |tl: &Timeline| tl.snaps.iter().map(|(s, _)| s.steps()).collect::<Vec<_>>();
+    assert_eq!(moves(&tl), [1, 2, 3, 4, 5, 6]);
+    // A second note at the same move takes none.
+    tl.note(&ep);
+    assert_eq!(tl.snaps.len(), 6);
+    tl.ratio = 1;
+    tl.thin();
+    assert_eq!(moves(&tl), [2, 4, 6]);
+    assert_eq!(tl.ratio, 2);
+    assert_eq!(tl.bytes, tl.snaps.iter().map(|&(_, b)| b).sum::<usize>());
+    tl.thin();
+    assert_eq!(moves(&tl), [4]);
+    tl.thin();
+    assert!(tl.snaps.is_empty() && tl.bytes == 0);
+    assert_eq!(tl.memory().bytes, tl.start_bytes);
+}
