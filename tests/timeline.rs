@@ -225,6 +225,15 @@ fn a_bad_point_names_itself_and_the_range_and_changes_nothing() {
     };
     tl.seek(&mut ep, last).unwrap();
     assert_eq!((ep.steps(), ep.point()), (3, last));
+    // From there, a loop past that decision is still past it.
+    let e = tl
+        .seek(&mut ep, TimePoint { loop_: 12, ..last })
+        .unwrap_err();
+    assert!(
+        matches!(e, SeekError::PastDecision { loops: 12, .. }),
+        "{e}"
+    );
+    assert_eq!((ep.steps(), ep.point()), (3, last));
     // A walker has no loops.
     let walk = small("cells").with(&[("searcher", "rw")]);
     let mut w = Episode::new(&walk).unwrap();

@@ -240,7 +240,14 @@ impl Timeline {
             .map(|(s, _)| s)
             .find(|s| s.steps() <= to.mv)
             .or(self.start.as_ref());
-        let here = ep.point();
+        // After a back-up the state is the next loop's start (or the next
+        // decision's, when it made the move): walking on starts there.
+        let here = match ep.point() {
+            p if p.phase == Some(PhaseKind::Backup) => {
+                TimePoint::at(ep.steps(), ep.loops_of_decision())
+            }
+            p => p,
+        };
         let from_here = here <= to && snap.is_none_or(|s| here >= s.point());
         let mut run = match (from_here, snap) {
             (true, _) => ep.snapshot(),
@@ -292,7 +299,7 @@ fn walk(run: &mut Episode, to: TimePoint) -> Result<(), SeekError> {
     }
     // Loops, then phases; a move made on the way means the decision
     // ended before the point.
-    let past = |run: &Episode, loops: u32| {
+    let past = |loops: u32| {
         if loops == 0 {
             SeekError::NoLoops { to }
         } else {
@@ -306,7 +313,7 @@ fn walk(run: &mut Episode, to: TimePoint) -> Result<(), SeekError> {
             None => return Err(ended(run)),
             Some(step) if step.moved().is_some() => {
                 let ran = loops + u32::from(step.phase() == Some(PhaseKind::Backup));
-                return Err(past(run, ran));
+                return Err(past(ran));
             }
             _ => {}
         }
@@ -320,9 +327,9 @@ fn walk(run: &mut Episode, to: TimePoint) -> Result<(), SeekError> {
         let loops = run.loops_of_decision();
         match run.step_phase() {
             None => return Err(ended(run)),
-            Some(PhaseStep::Work(Some(_))) => return Err(past(run, loops)),
+            Some(PhaseStep::Work(Some(_))) => return Err(past(loops)),
             Some(step) if step.moved().is_some() && want != PhaseKind::Backup => {
-                return Err(past(run, loops + 1));
+                return Err(past(loops + 1));
             }
             _ => {}
         }
