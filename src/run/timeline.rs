@@ -284,6 +284,52 @@ impl Timeline {
     }
 }
 
+/// Reads a point from JSON `{ "move": m, "loop": l, "phase": p }` (`loop`
+/// 0 and `phase` null when left out), strictly.
+///
+/// # Errors
+/// A [`SeekError::Param`] naming the field, the value and what is allowed.
+pub fn point_from_json(v: &serde_json::Value) -> Result<TimePoint, SeekError> {
+    let bad = |field, value: &dyn std::fmt::Display, allowed: &str| {
+        SeekError::Param(ParamError::new(field, value, allowed))
+    };
+    let obj = v
+        .as_object()
+        .ok_or_else(|| bad("seek", v, "an object { move, loop, phase }"))?;
+    if let Some(k) = obj
+        .keys()
+        .find(|k| !["move", "loop", "phase"].contains(&k.as_str()))
+    {
+        return Err(bad(
+            "seek",
+            &format!("key {k:?}"),
+            "the keys move, loop and phase",
+        ));
+    }
+    let int = |field: &'static str, required: bool| match obj.get(field) {
+        None if !required => Ok(0),
+        Some(x) => x
+            .as_f64()
+            .filter(|f| f.fract() == 0.0 && (0.0..=u32::MAX as f64).contains(f))
+            .map(|f| f as u32)
+            .ok_or_else(|| bad(field, x, "an integer in 0..=4294967295")),
+        None => Err(bad(field, &"nothing", "an integer in 0..=4294967295")),
+    };
+    let phase = match obj.get("phase") {
+        None | Some(serde_json::Value::Null) => None,
+        Some(p) => Some(
+            p.as_str()
+                .and_then(PhaseKind::parse)
+                .ok_or_else(|| bad("phase", p, "null, select, expand, rollout or backup"))?,
+        ),
+    };
+    Ok(TimePoint {
+        mv: int("move", true)?,
+        loop_: int("loop", false)?,
+        phase,
+    })
+}
+
 /// Steps `run` forward to `to` (at or after where it stands): whole moves,
 /// loops unrecorded, then the phases of the last loop recorded.
 fn walk(run: &mut Episode, to: TimePoint) -> Result<(), SeekError> {
