@@ -212,6 +212,9 @@ impl Bits {
     fn get(&self, i: u32) -> bool {
         self.0[i as usize / 64] >> (i % 64) & 1 == 1
     }
+    fn count(&self) -> usize {
+        self.0.iter().map(|w| w.count_ones() as usize).sum()
+    }
 }
 
 /// The nodes `q` keeps: the eligible ones (all, or the focus's), with at
@@ -327,13 +330,16 @@ pub fn export_arena<A: Arena>(
         });
     }
     let line = best_line(a);
-    let kept = keep(a, q, &line)?;
+    // The whole tree needs no ranking and no set of kept nodes.
+    let whole = q.focus == TreeFocus::All && q.min_visits == 0 && q.max_nodes as usize >= n;
+    let kept = if whole { None } else { Some(keep(a, q, &line)?) };
+    let shown = kept.as_ref().map_or(n, |k| k.count());
     let mut on_line = Bits::new(n);
     for &id in &line {
         on_line.set(id);
     }
-    let mut nodes: Vec<TreeNode> = Vec::new();
-    let mut parent_at: Vec<u32> = Vec::new();
+    let mut nodes: Vec<TreeNode> = Vec::with_capacity(shown);
+    let mut parent_at: Vec<u32> = Vec::with_capacity(shown);
     // (id, parent id, index of the parent in `nodes`, move, depth)
     let mut stack = vec![(0u32, NONE, NONE, None::<Move>, 0u32)];
     while let Some((id, parent, at, mv, depth)) = stack.pop() {
@@ -346,7 +352,7 @@ pub fn export_arena<A: Arena>(
                 continue;
             }
             children += 1;
-            if kept.get(k) {
+            if kept.as_ref().is_none_or(|kept| kept.get(k)) {
                 shown += 1;
                 stack.push((k, id, here, Some(Move::ALL[i]), depth + 1));
             }
