@@ -164,7 +164,7 @@ pub struct TreeExport {
 /// A tree kept in an arena, read by [`export_arena`].
 pub trait Arena {
     /// Nodes in the arena (all reachable from node 0, the root).
-    fn len(&self) -> usize;
+    fn nodes(&self) -> usize;
     /// A node's children by move (`u32::MAX` for none).
     fn children(&self, id: u32) -> [u32; 4];
     /// A node's visits.
@@ -222,7 +222,7 @@ impl Bits {
 /// visited first up to `max_nodes`. A child never has more visits than its
 /// parent, so the kept set holds each kept node's line to the root.
 fn keep<A: Arena>(a: &A, q: &TreeQuery, line: &[u32]) -> Result<Bits, TreeError> {
-    let n = a.len();
+    let n = a.nodes();
     let mut eligible: Option<Bits> = None;
     let mut forced = Bits::new(n);
     forced.set(0);
@@ -320,7 +320,7 @@ pub fn export_arena<A: Arena>(
     if q.max_nodes == 0 || q.max_nodes > MAX_EXPORT_NODES {
         return Err(TreeError::MaxNodes(q.max_nodes));
     }
-    let n = a.len();
+    let n = a.nodes();
     if n == 0 {
         return Ok(TreeExport {
             shape: TreeShape::Tree,
@@ -332,7 +332,11 @@ pub fn export_arena<A: Arena>(
     let line = best_line(a);
     // The whole tree needs no ranking and no set of kept nodes.
     let whole = q.focus == TreeFocus::All && q.min_visits == 0 && q.max_nodes as usize >= n;
-    let kept = if whole { None } else { Some(keep(a, q, &line)?) };
+    let kept = if whole {
+        None
+    } else {
+        Some(keep(a, q, &line)?)
+    };
     let shown = kept.as_ref().map_or(n, |k| k.count());
     let mut on_line = Bits::new(n);
     for &id in &line {

@@ -6,7 +6,7 @@ use super::*;
 struct Hand(Vec<([u32; 4], u32)>);
 
 impl Arena for Hand {
-    fn len(&self) -> usize {
+    fn nodes(&self) -> usize {
         self.0.len()
     }
     fn children(&self, id: u32) -> [u32; 4] {

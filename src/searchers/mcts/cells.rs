@@ -27,7 +27,7 @@
 //! table exactly; 0 clears it whenever the belief changes.
 
 use super::uct::argmax_random;
-use super::variant::{note_rollout, rollout, star, trace_len, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::param::{Param, ParamKind, Value};
 use crate::searchers::decision::{ChildStat, DecisionView};
@@ -246,6 +246,7 @@ impl Stats for CellTable {
 
     /// Selection: the neighbour with the highest UCT (unvisited ones
     /// first, their UCT is +∞), ties at random.
+    #[inline(always)]
     fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         let view = self.view(env.torus, root, env.c);
         let values = view.children.map(|ch| ch.uct);
@@ -268,6 +269,7 @@ impl Stats for CellTable {
     }
 
     /// A depth-1 table grows no tree: a neighbour without an entry gets one.
+    #[inline(always)]
     fn expand(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         if let Some(r) = rec {
             let fresh = self.visits[self.child as usize] == 0;
@@ -293,6 +295,7 @@ impl Stats for CellTable {
 
     /// The rollout from the selected neighbour, marking each distinct cell
     /// with the index of its first visit.
+    #[inline(always)]
     fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         let child = self.child;
         self.epoch = self.epoch.wrapping_add(1);
@@ -318,11 +321,8 @@ impl Stats for CellTable {
         let (steps, detected) = if env.mask[child as usize] != 0 {
             (0, true)
         } else {
-            let trace = env.trace.take();
-            let mut tee = Tee { inner: mark, trace };
-            let out = rollout(env, child, &mut tee);
-            env.trace = tee.trace;
-            mark = tee.inner;
+            let (out, m) = rollout_traced(env, child, mark);
+            mark = m;
             (out.steps, out.detected)
         };
         self.marked = mark.len();
@@ -332,6 +332,7 @@ impl Stats for CellTable {
 
     /// Every distinct cell of the loop gets a visit, and each but the root
     /// the reward of its own stopping time.
+    #[inline(always)]
     fn back_up(
         &mut self,
         env: &mut LoopEnv<'_>,

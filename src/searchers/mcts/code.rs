@@ -23,7 +23,7 @@
 //! reset each move.
 
 use super::uct::argmax_random;
-use super::variant::{note_rollout, rollout, star, trace_len, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::searchers::decision::{ChildStat, DecisionView};
 use crate::searchers::phase::{
@@ -67,7 +67,10 @@ struct PassThrough<'a> {
 impl Visit for PassThrough<'_> {
     #[inline]
     fn visit(&mut self, cell: u32, _step: u32) {
-        self.visits[cell as usize] += 1;
+        debug_assert!((cell as usize) < self.visits.len());
+        // SAFETY: every cell comes from the torus, and `playout` asserts
+        // that the table has a count per torus cell.
+        unsafe { *self.visits.get_unchecked_mut(cell as usize) += 1 };
     }
 }
 
@@ -87,6 +90,27 @@ impl CodeTable {
             before: [(0, 0.0); 5],
             start: None,
         }
+    }
+
+    /// Visits `root` and `child` and rolls out from `child`, a visit for
+    /// every step.
+    fn playout(&mut self, env: &mut LoopEnv<'_>, root: u32, child: u32) -> (u32, bool) {
+        self.visits[root as usize] += 1;
+        self.visits[child as usize] += 1;
+        if env.mask[child as usize] != 0 {
+            return (0, true);
+        }
+        // The counts are written unchecked in the rollout's inner loop.
+        assert_eq!(
+            self.visits.len(),
+            env.torus.cells(),
+            "table and torus sizes differ"
+        );
+        let visit = PassThrough {
+            visits: &mut self.visits,
+        };
+        let (out, _) = rollout_traced(env, child, visit);
+        (out.steps, out.detected)
     }
 
     /// The exploitation term `Qx/Nx` the decision panel shows for `cell`.
@@ -134,6 +158,7 @@ impl Stats for CodeTable {
     /// Selection: the first neighbour never visited (an expansion
     /// rollout, not a loop), else the highest UCT with the root's visit
     /// of this loop counted first, as in the code.
+    #[inline(always)]
     fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         // The code tests the neighbours in this order once per move, and a
         // count never returns to 0, so testing here on every call finds
@@ -176,6 +201,7 @@ impl Stats for CodeTable {
     }
 
     /// No node is added; a neighbour's first rollout is the code's expansion.
+    #[inline(always)]
     fn expand(&mut self, _env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
         if let Some(r) = rec {
             let mv = Move::ALL[self.pick];
@@ -196,33 +222,20 @@ impl Stats for CodeTable {
 
     /// The rollout from the chosen neighbour: the root and the neighbour
     /// get a visit, and so does every cell a rollout step enters.
+    #[inline(always)]
     fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         let child = self.child;
         if rec.is_some() {
             self.before = star(env.torus, root).map(|c| (self.visits[c as usize], self.mean(c)));
         }
-        self.visits[root as usize] += 1;
-        self.visits[child as usize] += 1;
         let from = trace_len(env);
-        let (steps, detected) = if env.mask[child as usize] != 0 {
-            (0, true)
-        } else {
-            let trace = env.trace.take();
-            let mut tee = Tee {
-                inner: PassThrough {
-                    visits: &mut self.visits,
-                },
-                trace,
-            };
-            let out = rollout(env, child, &mut tee);
-            env.trace = tee.trace;
-            (out.steps, out.detected)
-        };
+        let (steps, detected) = self.playout(env, root, child);
         (self.loop_steps, self.detected) = (steps, detected);
         note_rollout(rec, from, steps, detected);
     }
 
     /// The chosen neighbour's `K` and `Qx`.
+    #[inline(always)]
     fn back_up(
         &mut self,
         env: &mut LoopEnv<'_>,

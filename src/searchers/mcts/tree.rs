@@ -3,7 +3,7 @@
 //! each real move, in a bounded arena.
 
 use super::uct::argmax_random;
-use super::variant::{note_rollout, rollout, trace_len, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::game::rng;
 use crate::param::{Param, ParamKind, Value};
@@ -96,7 +96,7 @@ const NOTE: &str = "tree: N counts the loops through a node (the root's since it
 struct View<'a>(&'a [Node]);
 
 impl Arena for View<'_> {
-    fn len(&self) -> usize {
+    fn nodes(&self) -> usize {
         self.0.len()
     }
     fn children(&self, id: u32) -> [u32; 4] {
@@ -320,13 +320,7 @@ impl Stats for Tree {
             (0, true)
         } else {
             let from = self.nodes[self.node as usize].cell;
-            let trace = env.trace.take();
-            let mut tee = Tee {
-                inner: NoVisit,
-                trace,
-            };
-            let out = rollout(env, from, &mut tee);
-            env.trace = tee.trace;
+            let (out, _) = rollout_traced(env, from, NoVisit);
             (out.steps, out.detected)
         };
         (self.steps, self.detected) = (steps, detected);

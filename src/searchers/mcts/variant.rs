@@ -183,6 +183,29 @@ impl<V: Visit> Visit for Tee<'_, V> {
     }
 }
 
+/// Runs the rollout policy from `from` with `visit`, recording its cells in
+/// the loop's trace when there is one; returns the outcome and the visitor.
+/// Without a trace the walk runs with `visit` alone: no test of the trace
+/// at every step.
+pub(crate) fn rollout_traced<V: Visit>(env: &mut LoopEnv<'_>, from: u32, visit: V) -> (Outcome, V) {
+    match env.trace.take() {
+        None => {
+            let mut v = visit;
+            let out = rollout(env, from, &mut v);
+            (out, v)
+        }
+        Some(t) => {
+            let mut tee = Tee {
+                inner: visit,
+                trace: Some(t),
+            };
+            let out = rollout(env, from, &mut tee);
+            env.trace = tee.trace;
+            (out, tee.inner)
+        }
+    }
+}
+
 /// Runs the rollout policy from `from` and returns the outcome.
 pub(crate) fn rollout<V: Visit>(env: &mut LoopEnv<'_>, from: u32, visit: &mut V) -> Outcome {
     env.policy.begin(from, env.practice);

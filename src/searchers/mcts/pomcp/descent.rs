@@ -21,7 +21,7 @@ const NOTE: &str = "pomcp (the belief MCTS): N counts the loops through a node, 
 struct View<'a>(&'a BeliefTree);
 
 impl Arena for View<'_> {
-    fn len(&self) -> usize {
+    fn nodes(&self) -> usize {
         self.0.nodes.len()
     }
     fn children(&self, id: u32) -> [u32; 4] {
