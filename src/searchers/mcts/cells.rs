@@ -295,7 +295,11 @@ impl Stats for CellTable {
 
     /// The rollout from the selected neighbour, marking each distinct cell
     /// with the index of its first visit.
-    #[inline(always)]
+    // The rollout's own function is faster in wasm (its engines keep the
+    // walk's state in registers there) and slower natively: measured by
+    // instruction counts (benches/instructions.mjs).
+    #[cfg_attr(target_arch = "wasm32", inline(never))]
+    #[cfg_attr(not(target_arch = "wasm32"), inline(always))]
     fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         let child = self.child;
         self.epoch = self.epoch.wrapping_add(1);
