@@ -113,7 +113,7 @@ fn a_race_steps_phases_and_seeks_each_run_to_its_own_past() {
         }
         points.push(race.timeline()[0].0);
     }
-    assert!(points.len() > 40 && race.memory().iter().all(|m| m.bytes > 0));
+    assert!(points.len() > 40 && race.memory().len() == 2);
     for &to in points.iter().rev().step_by(3) {
         race.seek(to).unwrap();
         assert_eq!(race.runs()[0].point(), to);

@@ -672,13 +672,14 @@ impl Episode {
     /// A copy of the run as it stands, from which stepping gives what
     /// this one would (`None` when its searcher cannot copy itself).
     pub fn snapshot(&self) -> Option<Episode> {
+        let searcher = self.searcher.snapshot()?;
         Some(Episode {
             cfg: self.cfg.clone(),
             info: self.info,
             torus: self.torus.clone(),
             sensor: self.sensor.clone(),
             belief: self.belief.clone(),
-            searcher: self.searcher.snapshot()?,
+            searcher,
             rng: self.rng.clone(),
             budget: self.budget.clone(),
             traces: self.traces.clone(),

@@ -8,8 +8,10 @@
 //! loops and moves) reaches [`WORK_PER_BYTE`] times the snapshot's size,
 //! so copying costs a small share of the search and a seek replays a
 //! bounded amount of it; when the snapshots outgrow the cap, every other
-//! one is dropped and the spacing doubles. A searcher that cannot copy
-//! itself (the planners) is replayed from the start.
+//! one is dropped and the spacing doubles; a snapshot larger than the cap
+//! is never taken. Before the first snapshot, and for a searcher that
+//! cannot copy itself (the planners), the run is replayed from its start,
+//! built again from its configuration.
 //!
 //! A point before a decision's first loop stands before any work on that
 //! decision: slices of a plan being made (the belief MCTS's, a planner's)
@@ -91,11 +93,11 @@ impl std::error::Error for SeekError {}
 /// How much memory the snapshots hold.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct TimelineMemory {
-    /// Bytes held by the snapshots (the start's included).
+    /// Bytes held by the snapshots.
     pub bytes: usize,
-    /// The cap the snapshots after the start are kept within.
+    /// The cap the snapshots are kept within.
     pub cap: usize,
-    /// Snapshots kept after the start.
+    /// Snapshots kept.
     pub snapshots: usize,
     /// The work between snapshots, per byte of a snapshot.
     pub work_per_byte: u64,
@@ -103,10 +105,7 @@ pub struct TimelineMemory {
 
 /// A run's snapshots and the furthest point it has reached.
 pub struct Timeline {
-    /// The run at its start (`None` for a searcher that cannot copy itself).
-    start: Option<Episode>,
-    start_bytes: usize,
-    /// Snapshots after the start, by increasing move.
+    /// Snapshots by increasing move, with their bytes.
     snaps: Vec<(Episode, usize)>,
     bytes: usize,
     cap: usize,
@@ -129,14 +128,7 @@ impl Timeline {
     /// As [`Timeline::new`], a snapshot taken once the work since the last
     /// reaches `work_per_byte` times its bytes (0: at every move).
     pub fn with_spacing(ep: &Episode, cap: usize, work_per_byte: u64) -> Timeline {
-        let start = ep.snapshot().map(|mut s| {
-            s.forget_phase();
-            s
-        });
-        let start_bytes = start.as_ref().map_or(0, Episode::heap_bytes);
         Timeline {
-            start,
-            start_bytes,
             snaps: Vec::new(),
             bytes: 0,
             cap,
@@ -154,7 +146,7 @@ impl Timeline {
     /// What the snapshots hold.
     pub fn memory(&self) -> TimelineMemory {
         TimelineMemory {
-            bytes: self.start_bytes + self.bytes,
+            bytes: self.bytes,
             cap: self.cap,
             snapshots: self.snaps.len(),
             work_per_byte: self.ratio,
@@ -172,22 +164,22 @@ impl Timeline {
             && p.phase.is_none_or(|k| k == PhaseKind::Backup)
             && ep.status() == Status::Running;
         let latest = self.snaps.last().map_or(0, |(s, _)| s.steps());
-        if !at_move || ep.steps() <= latest || self.start.is_none() || ep.timed().is_some() {
+        if !at_move || ep.steps() <= latest || ep.timed().is_some() {
             return;
         }
         let work = ep.work_done().saturating_sub(self.last_work);
         let size = ep.heap_bytes();
-        if work < self.ratio.saturating_mul(size as u64) {
+        if work < self.ratio.saturating_mul(size as u64) || size > self.cap {
             return;
+        }
+        while self.bytes + size > self.cap && !self.snaps.is_empty() {
+            self.thin();
         }
         if let Some(mut s) = ep.snapshot() {
             s.forget_phase();
             self.snaps.push((s, size));
             self.bytes += size;
             self.last_work = ep.work_done();
-            while self.bytes > self.cap && !self.snaps.is_empty() {
-                self.thin();
-            }
         }
     }
 
@@ -238,8 +230,7 @@ impl Timeline {
             .iter()
             .rev()
             .map(|(s, _)| s)
-            .find(|s| s.steps() <= to.mv)
-            .or(self.start.as_ref());
+            .find(|s| s.steps() <= to.mv);
         // After a back-up the state is the next loop's start (or the next
         // decision's, when it made the move): walking on starts there.
         let here = match ep.point() {

@@ -32,7 +32,7 @@ fn thinning_keeps_every_other_snapshot_and_doubles_the_spacing() {
     assert_eq!(moves(&tl), [4]);
     tl.thin();
     assert!(tl.snaps.is_empty() && tl.bytes == 0);
-    assert_eq!(tl.memory().bytes, tl.start_bytes);
+    assert_eq!(tl.memory().bytes, 0);
 }
 
 #[test]
