@@ -239,16 +239,15 @@ impl Stats for Tree {
         (self.node, self.depth, self.terminal) = (0, 0, false);
         while !self.terminal && !self.expandable(self.node) {
             let node = self.node;
-            let cands = rec
-                .as_ref()
-                .map(|_| self.candidates(env.torus, node, env.c));
             let Some(i) = self.select_child(node, env) else {
                 break;
             };
             if self.depth == 0 {
                 self.selected[i] += 1;
             }
-            if let (Some(r), Some(cands)) = (rec.as_deref_mut(), cands) {
+            if let Some(r) = rec.as_deref_mut() {
+                // Selection changed no statistic the terms read.
+                let cands = self.candidates(env.torus, node, env.c);
                 let n = &self.nodes[node as usize];
                 let level = SelectLevel::new(node, n.cell, n.visits, cands, i, SelectRule::Uct);
                 r.select.push(level);

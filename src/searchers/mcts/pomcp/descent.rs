@@ -90,16 +90,15 @@ impl BeliefTree {
     ) {
         let mut node = 0u32;
         while !count.done() && !self.expands_at(env.torus, node) {
-            let cands = rec
-                .as_ref()
-                .map(|_| self.candidates(env.torus, node, env.c));
             let Some(i) = self.select_child(node, env) else {
                 break;
             };
             if node == 0 {
                 self.selected[i] += 1;
             }
-            if let (Some(r), Some(cands)) = (rec.as_deref_mut(), cands) {
+            if let Some(r) = rec.as_deref_mut() {
+                // Selection changed no statistic the terms read.
+                let cands = self.candidates(env.torus, node, env.c);
                 let n = &self.nodes[node as usize];
                 let level = SelectLevel::new(node, n.cell, n.visits, cands, i, SelectRule::Uct);
                 r.select.push(level);
