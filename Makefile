@@ -140,6 +140,8 @@ bench: setup
 	node benches/wasm-node.mjs
 	$(call section,cost per move of every searcher: wasm vs native (benches/moves.mjs))
 	node benches/moves.mjs
+	$(call section,teaching: seeking and a 10^5-node tree in wasm (benches/teach-node.mjs))
+	node benches/teach-node.mjs
 	$(call section,instructions per MCTS loop: wasm vs native (benches/instructions.mjs))
 	@command -v valgrind >/dev/null || { apt-get update -qq && apt-get install -y -qq valgrind >/dev/null; }
 	node benches/instructions.mjs

@@ -7,7 +7,9 @@ use crate::game::lattice::{Sensor, Torus};
 use crate::game::prior::{PriorSpec, TargetPrior};
 use crate::game::rng;
 use crate::param::{ParamError, Value};
-use crate::run::episode::Episode;
+use crate::run::episode::{Episode, Status, TimePoint};
+use crate::run::race::Race;
+use crate::run::timeline::{Timeline, DEFAULT_CAP_BYTES};
 use crate::searchers::mcts::search::VARIANT;
 use crate::searchers::mcts::variant::Variant;
 use crate::searchers::walks::policy::{Policy, PolicyKind};
@@ -227,6 +229,84 @@ impl MoveRunner {
         }
         Ok(())
     }
+}
+
+/// The teaching workloads' configuration: N = 40, L = 100, a uniform
+/// prior (a long search), otherwise the defaults.
+pub fn teach_config() -> Config {
+    Config {
+        prior: crate::game::prior::PriorKind::Uniform,
+        ..Config::default()
+    }
+    .with(&[("loops", "100")])
+}
+
+/// A `tree` episode of `cfg` (N and seed kept) whose first decision has
+/// run `loops` loops: a tree of about `loops` nodes to export.
+///
+/// # Errors
+/// A [`ParamError`] naming the first invalid field.
+pub fn big_tree(cfg: &Config, loops: u32) -> Result<Episode, ParamError> {
+    let text = loops.to_string();
+    let cap = (loops + 16).to_string();
+    let cfg = cfg
+        .clone()
+        .with(&[("variant", "tree"), ("loops", &text), ("tree_nodes", &cap)]);
+    let mut ep = Episode::new(&cfg)?;
+    ep.step_loops(loops - 1);
+    Ok(ep)
+}
+
+/// Trial 0 of `cfg` played `moves` real moves (or to its end) with its
+/// timeline kept, as the page plays it: the workload behind seeking.
+///
+/// # Errors
+/// A [`ParamError`] naming the first invalid field.
+pub fn played(cfg: &Config, moves: u32) -> Result<(Episode, Timeline), ParamError> {
+    let mut ep = Episode::new(cfg)?;
+    let mut tl = Timeline::new(&ep, DEFAULT_CAP_BYTES);
+    while ep.steps() < moves && ep.status() == Status::Running {
+        ep.step_move();
+        tl.note(&ep);
+    }
+    Ok((ep, tl))
+}
+
+/// `count` points spread over what `tl` has reached of a run of
+/// `loops` loops a decision (moves, loops and phases), from a fixed seed.
+pub fn seek_points(tl: &Timeline, loops: u32, count: usize) -> Vec<TimePoint> {
+    let end = tl.end();
+    let mut r = rng::stream(0x5eec, 0);
+    (0..count)
+        .map(|_| {
+            let mv = rng::below(&mut r, end.mv.max(1));
+            let phase = match rng::below(&mut r, 5) {
+                0 => None,
+                k => Some(crate::searchers::phase::PhaseKind::ALL[k as usize - 1]),
+            };
+            TimePoint {
+                mv,
+                loop_: rng::below(&mut r, loops),
+                phase,
+            }
+        })
+        .collect()
+}
+
+/// `loops` loops of `cfg` through a race (the page's path, with its
+/// timeline), in calls of `k` loops; returns the moves made.
+///
+/// # Errors
+/// A [`ParamError`] naming the first invalid field.
+pub fn race_loops(cfg: &Config, loops: u64, k: u64) -> Result<u64, ParamError> {
+    let mut race = Race::new(std::slice::from_ref(cfg))?;
+    let mut done = 0;
+    while done < loops && race.running() > 0 {
+        let before = race.runs()[0].counters().rollouts;
+        race.advance(k.min(loops - done));
+        done += race.runs()[0].counters().rollouts - before;
+    }
+    Ok(race.runs()[0].steps() as u64)
 }
 
 #[cfg(test)]

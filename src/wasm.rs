@@ -22,6 +22,9 @@ use crate::searchers::walks::policy::PolicyKind;
 use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
+mod teach;
+pub use teach::{config_differences, run_paired_trial, summarize_paired};
+
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
 
 /// The system allocator, noting the size of the last allocation it could

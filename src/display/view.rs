@@ -11,10 +11,11 @@
 use crate::display::render::{Alpha, Colorizer, Extent, Palette, Scale, ScaleKind};
 use crate::game::fnv::Fnv;
 use crate::game::layer::Layer;
-use crate::run::episode::{Episode, Status};
+use crate::run::episode::{Episode, Status, TimePoint};
 use crate::searchers::decision::{DecisionView, MoveScores, Planning};
 use crate::searchers::mcts::search::final_rule;
 use crate::searchers::mcts::uct::{leading, FinalRule};
+use crate::searchers::phase::{BackupEntry, Expansion, PhaseKind, PhaseRecord, SelectLevel};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The palette and alpha ramp a display uses for `layer` unless told otherwise.
@@ -163,6 +164,43 @@ pub struct LayerFrame<'a> {
     pub sum: f64,
 }
 
+/// The loop stepped phase by phase, as far as it has gone: what each phase
+/// did (see [`PhaseRecord`]), cells as little-endian u32 buffers.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PhaseFrame<'a> {
+    /// The last phase done.
+    pub phase: Option<PhaseKind>,
+    /// The practice target the loop chases.
+    pub practice: u32,
+    /// Selection, root first: each level's four moves with their UCT terms.
+    pub select: &'a [SelectLevel],
+    /// What the expansion did, once done.
+    pub expansion: Option<Expansion>,
+    /// The loop's tree path (root first), as cells.
+    pub path: Bytes<'a>,
+    /// The rollout's cells after the leaf (once rolled out).
+    pub rollout: Bytes<'a>,
+    /// Where each chunk of the rollout ends (indices into `rollout`), to
+    /// reveal it in a fixed number of frames.
+    pub chunks: Vec<u32>,
+    /// Steps of the rollout.
+    pub rollout_steps: u32,
+    /// The practice target was detected.
+    pub detected: bool,
+    /// The rollout stopped at its step cap.
+    pub truncated: bool,
+    /// The belief MCTS cut the rollout and charged its reference's rest.
+    pub cut: bool,
+    /// The reward (return) backed up.
+    pub reward: f64,
+    /// The nodes or table entries the back-up updated, old → new.
+    pub backup: &'a [BackupEntry],
+    /// Cells outside the root and its neighbours that gained a visit.
+    pub others: u32,
+    /// False for `code`'s expansion rollouts (not one of the loops).
+    pub counts: bool,
+}
+
 /// Everything a display draws of one episode at one moment.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Frame<'a> {
@@ -209,6 +247,10 @@ pub struct Frame<'a> {
     pub scores: Option<MoveScores>,
     /// How far the plan being made has got, while a planner makes one.
     pub planning: Option<Planning>,
+    /// Where the episode stands on its timeline.
+    pub point: TimePoint,
+    /// The loop stepped phase by phase, while one is shown.
+    pub phase: Option<PhaseFrame<'a>>,
 }
 
 /// The most cells of a planner's intended path a frame carries: a plan can
@@ -241,6 +283,8 @@ pub struct FrameBuilder {
     path: Vec<u8>,
     traces: Vec<Vec<u8>>,
     intent: Vec<u8>,
+    phase_path: Vec<u8>,
+    phase_rollout: Vec<u8>,
 }
 
 /// Recolouring period (ms) of changing layers while the search runs on its
@@ -253,6 +297,26 @@ pub fn recolour_period_ms(cells: usize, live: bool) -> f64 {
         (true, c) if c > 1 << 17 => 120.0,
         (true, c) if c > 1 << 14 => 33.0,
         _ => 0.0,
+    }
+}
+
+fn phase_frame<'a>(r: &'a PhaseRecord, path: &'a [u8], rollout: &'a [u8]) -> PhaseFrame<'a> {
+    PhaseFrame {
+        phase: r.phase,
+        practice: r.practice,
+        select: &r.select,
+        expansion: r.expansion,
+        path: Bytes(path),
+        rollout: Bytes(rollout),
+        chunks: r.chunks(),
+        rollout_steps: r.rollout_steps,
+        detected: r.detected,
+        truncated: r.truncated,
+        cut: r.cut,
+        reward: r.reward,
+        backup: &r.backup,
+        others: r.others,
+        counts: r.counts,
     }
 }
 
@@ -279,6 +343,8 @@ impl FrameBuilder {
             path: Vec::new(),
             traces: Vec::new(),
             intent: Vec::new(),
+            phase_path: Vec::new(),
+            phase_rollout: Vec::new(),
         }
     }
 
@@ -318,6 +384,12 @@ impl FrameBuilder {
             None
         };
 
+        let phase = ep.phase().map(|r| {
+            let from = (r.rollout_from as usize).min(r.trace.len());
+            le_bytes(&r.trace[..from], &mut self.phase_path);
+            le_bytes(r.rollout(), &mut self.phase_rollout);
+            phase_frame(r, &self.phase_path, &self.phase_rollout)
+        });
         let rule = final_rule(&ep.config().settings);
         let decision = ep.decision().map(|view| Decision {
             view,
@@ -371,6 +443,8 @@ impl FrameBuilder {
             intent,
             scores: ep.scores(),
             planning: ep.planning(),
+            point: ep.point(),
+            phase,
         }
     }
 

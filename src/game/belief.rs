@@ -62,6 +62,15 @@ fn posterior_into(mass: &[f64], searched: &[u8], out: &mut Vec<f64>) {
 }
 
 impl BeliefState {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        self.prior.heap_bytes()
+            + self.plan.as_ref().map_or(0, TargetPrior::heap_bytes)
+            + std::mem::size_of_val(&self.searched[..])
+            + std::mem::size_of_val(&self.posterior[..])
+            + self.alias.as_ref().map_or(0, Alias::heap_bytes)
+    }
+
     /// A belief of `kind` with nothing searched yet; `plan` replaces `prior`
     /// for planning when the target is known.
     pub fn new(kind: Belief, prior: TargetPrior, plan: Option<TargetPrior>) -> BeliefState {

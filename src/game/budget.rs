@@ -53,6 +53,16 @@ impl Budget {
         self.clock = clock;
     }
 
+    /// The clock time budgets read.
+    pub fn clock(&self) -> fn() -> f64 {
+        self.clock
+    }
+
+    /// The time budget in milliseconds, if decisions are timed.
+    pub fn ms(&self) -> Option<f64> {
+        self.ms
+    }
+
     /// The clock's time now, in milliseconds.
     pub fn now(&self) -> f64 {
         (self.clock)()

@@ -29,6 +29,11 @@ fn live(marked: u8, searched: u8, mass: f64) -> f64 {
 }
 
 impl Coverage {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.marked[..]) + std::mem::size_of_val(&self.stack[..])
+    }
+
     /// Room for a lattice of `cells` cells, nothing simulated.
     pub fn new(cells: usize) -> Coverage {
         Coverage {

@@ -98,6 +98,11 @@ pub struct Torus {
 }
 
 impl Torus {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.nbr[..])
+    }
+
     /// Builds the torus.
     ///
     /// # Errors
@@ -254,6 +259,18 @@ pub struct Sensor {
 }
 
 impl Sensor {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(&self.offsets[..])
+            + self
+                .fronts
+                .iter()
+                .map(|f| size_of_val(&f[..]))
+                .sum::<usize>()
+            + size_of_val(&self.mask[..])
+    }
+
     /// Builds the sensor for radius `rv` (Euclidean, on the torus).
     ///
     /// # Errors

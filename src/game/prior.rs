@@ -93,6 +93,15 @@ pub struct TargetPrior {
 }
 
 impl TargetPrior {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.mass[..])
+            + match &self.sampler {
+                Sampler::Alias(a) => a.heap_bytes(),
+                _ => 0,
+            }
+    }
+
     /// Builds `spec` on `torus`.
     ///
     /// # Errors
@@ -352,6 +361,11 @@ pub struct Alias {
 }
 
 impl Alias {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.prob[..]) + std::mem::size_of_val(&self.alias[..])
+    }
+
     /// Builds the table for weights `w` (non-negative, positive sum).
     pub fn new(w: &[f64]) -> Alias {
         let len = w.len();

@@ -11,6 +11,15 @@ pub struct Traces {
 }
 
 impl Traces {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        self.ring
+            .iter()
+            .map(|t| std::mem::size_of_val(&t[..]))
+            .sum::<usize>()
+            + std::mem::size_of_val(&self.targets[..])
+    }
+
     /// Room for `keep` traces (0 keeps none and costs nothing).
     pub fn new(keep: usize) -> Traces {
         Traces {

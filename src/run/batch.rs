@@ -32,10 +32,27 @@ pub fn run_trials(cfg: &Config, first: u64, count: u64) -> Result<Vec<TrialResul
 /// # Errors
 /// A [`ParamError`] naming the first invalid field.
 pub fn fingerprint(cfg: &Config, trials: u64) -> Result<u64, ParamError> {
+    fingerprint_driven(cfg, trials, |e| {
+        e.run();
+    })
+}
+
+/// The fingerprint of `trials` trials each run to its end by `drive`
+/// (stepped in any way: by moves, loops or phases), as [`fingerprint`]
+/// hashes them.
+///
+/// # Errors
+/// A [`ParamError`] naming the first invalid field.
+pub fn fingerprint_driven(
+    cfg: &Config,
+    trials: u64,
+    mut drive: impl FnMut(&mut Episode),
+) -> Result<u64, ParamError> {
     let mut h = Fnv::default();
     for i in 0..trials {
         let mut e = Episode::trial(cfg, i)?;
-        let r = e.run();
+        drive(&mut e);
+        let r = e.result();
         for &c in e.path() {
             h.word(c as u64);
         }

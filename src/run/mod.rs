@@ -2,4 +2,6 @@
 
 pub mod batch;
 pub mod episode;
+pub mod paired;
 pub mod race;
+pub mod timeline;

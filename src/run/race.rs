@@ -1,10 +1,13 @@
 //! One episode, or several racing: each on its own configuration, stepped
 //! together. The page shows a race side by side; with the same seed the
-//! runs share their target.
+//! runs share their target. Each run keeps its timeline, so the race can
+//! seek back to any point it has reached.
 
 use crate::config::Config;
 use crate::param::ParamError;
-use crate::run::episode::{Episode, Status};
+use crate::run::episode::{Episode, Status, TimePoint};
+use crate::run::timeline::{SeekError, Timeline, TimelineMemory, DEFAULT_CAP_BYTES};
+use crate::searchers::phase::PhaseStep;
 
 /// Episodes stepped together. A searcher that does not deliberate, racing
 /// one that does, makes no more real moves than it while it runs, so the
@@ -16,6 +19,8 @@ pub struct Race {
     pacer: Vec<Option<usize>>,
     /// For each run, the moves "Step move" has asked it to have made.
     asked: Vec<u32>,
+    /// For each run, its snapshots and furthest point.
+    timelines: Vec<Timeline>,
 }
 
 /// How many runs a race holds at most.
@@ -48,7 +53,16 @@ impl Race {
             })
             .collect();
         let asked = vec![0; runs.len()];
-        Ok(Race { runs, pacer, asked })
+        let timelines = runs
+            .iter()
+            .map(|r| Timeline::new(r, DEFAULT_CAP_BYTES))
+            .collect();
+        Ok(Race {
+            runs,
+            pacer,
+            asked,
+            timelines,
+        })
     }
 
     /// The runs.
@@ -80,15 +94,89 @@ impl Race {
                 _ => u64::MAX,
             };
             // The limit is on moves: a planner's slices are not moves.
-            self.runs[i].advance_within(k, limit);
+            let tl = &mut self.timelines[i];
+            self.runs[i].advance_observed(k, limit, |e| tl.note(e));
+            tl.note(&self.runs[i]);
         }
     }
 
     /// One loop on every unfinished run (one move for a walker).
     pub fn step_loop(&mut self) {
-        for r in &mut self.runs {
+        for (r, tl) in self.runs.iter_mut().zip(&mut self.timelines) {
             r.step_loops(1);
+            tl.note(r);
         }
+    }
+
+    /// One phase of the loop in flight on every unfinished run (see
+    /// [`Episode::step_phase`]); a walker racing an MCTS run moves only
+    /// while behind it. Returns what each run did (`None`: nothing).
+    pub fn step_phase(&mut self) -> Vec<Option<PhaseStep>> {
+        (0..self.runs.len())
+            .map(|i| {
+                if let Some(j) = self.pacer[i] {
+                    let pacer = &self.runs[j];
+                    if pacer.status() == Status::Running && self.runs[i].steps() >= pacer.steps() {
+                        return None;
+                    }
+                }
+                let step = self.runs[i].step_phase();
+                self.timelines[i].note(&self.runs[i]);
+                step
+            })
+            .collect()
+    }
+
+    /// Each run's point and the furthest point it has reached.
+    pub fn timeline(&self) -> Vec<(TimePoint, TimePoint)> {
+        self.runs
+            .iter()
+            .zip(&self.timelines)
+            .map(|(r, tl)| (r.point(), tl.end()))
+            .collect()
+    }
+
+    /// What each run's snapshots hold.
+    pub fn memory(&self) -> Vec<TimelineMemory> {
+        self.timelines.iter().map(Timeline::memory).collect()
+    }
+
+    /// Moves every run to point `to` of its timeline, the state reached
+    /// going forward. `to` must be a point one of the runs has reached;
+    /// a run that has not reached it, or whose decision there ran fewer
+    /// loops, shows its latest point before it.
+    ///
+    /// # Errors
+    /// A [`SeekError`] naming the point and the points allowed when no run
+    /// has it (the run that went furthest names its range); nothing changes.
+    pub fn seek(&mut self, to: TimePoint) -> Result<(), SeekError> {
+        let mut exact: Vec<Result<Episode, SeekError>> = self
+            .runs
+            .iter()
+            .zip(&self.timelines)
+            .map(|(r, tl)| tl.replay(r, to))
+            .collect();
+        if exact.iter().all(Result::is_err) {
+            let furthest = (0..self.runs.len())
+                .max_by_key(|&i| (self.timelines[i].end(), std::cmp::Reverse(i)))
+                .unwrap_or(0);
+            return Err(exact
+                .swap_remove(furthest)
+                .err()
+                .expect("every replay failed"));
+        }
+        let mut landed = Vec::with_capacity(self.runs.len());
+        for (i, r) in exact.into_iter().enumerate() {
+            landed.push(match r {
+                Ok(ep) => ep,
+                Err(_) => self.timelines[i].replay_at_most(&self.runs[i], to)?,
+            });
+        }
+        for (i, ep) in landed.into_iter().enumerate() {
+            self.asked[i] = ep.steps();
+            self.runs[i] = ep;
+        }
+        Ok(())
     }
 
     /// Finishes the decision under way and makes one real move, on every
@@ -115,9 +203,16 @@ impl Race {
     /// made them or ended.
     pub fn make_asked_moves(&mut self) -> bool {
         let mut done = true;
-        for (r, &asked) in self.runs.iter_mut().zip(&self.asked) {
+        for ((r, &asked), tl) in self
+            .runs
+            .iter_mut()
+            .zip(&self.asked)
+            .zip(&mut self.timelines)
+        {
             while r.status() == Status::Running && r.steps() < asked {
-                if !r.step_move_bounded() {
+                let moved = r.step_move_bounded();
+                tl.note(r);
+                if !moved {
                     done = false;
                     break;
                 }

@@ -6,6 +6,8 @@
 //!   how to build it.
 //! * [`registry`]: every searcher by name.
 //! * [`decision`]: what a searcher reports about its decision.
+//! * [`phase`]: an MCTS loop a phase at a time, with what each phase did.
+//! * [`tree_export`]: the decision's search tree as data, cut for drawing.
 //! * [`walks`]: the random walk, the Lévy flight, NSARW and the greedy
 //!   walk, as searchers and as rollout policies.
 //! * [`planning`]: the parts the belief planners share (the lookahead, the
@@ -18,10 +20,12 @@
 pub mod decision;
 pub mod info;
 pub mod mcts;
+pub mod phase;
 pub mod planners;
 pub mod planning;
 pub mod registry;
 pub mod searcher;
+pub mod tree_export;
 pub mod walks;
 
 #[cfg(test)]

@@ -1,6 +1,8 @@
 //! The [`Searcher`] trait: who decides each real move, and what it works with.
 
 use super::decision::{DecisionView, MoveScores, Planning};
+use super::phase::{PhaseRecord, PhaseStep};
+use super::tree_export::{TreeError, TreeExport, TreeQuery};
 use crate::game::belief::BeliefState;
 use crate::game::budget::Budget;
 use crate::game::counters::Counters;
@@ -73,6 +75,49 @@ pub trait Searcher {
     /// plan in slices is making one (`None` otherwise).
     fn planning(&self) -> Option<Planning> {
         None
+    }
+
+    /// Works on the decision under way by one phase of a loop (recording
+    /// what it did when `record`, see [`Searcher::phase`]). Stepped a phase
+    /// at a time or by [`Searcher::think`], loops give the same moves: a
+    /// call of `think` first finishes the loop in flight. A searcher
+    /// without loops does one call of its work (`think` for one loop).
+    fn think_phase(&mut self, w: &mut World<'_>, record: bool) -> PhaseStep {
+        let _ = record;
+        PhaseStep::Work(self.think(w, 1))
+    }
+
+    /// The loop stepped phase by phase with recording on, as far as it has
+    /// gone (`None` for a searcher without loops).
+    fn phase(&self) -> Option<&PhaseRecord> {
+        None
+    }
+
+    /// The decision's search tree at `pos`, cut by `q` (`None` for a
+    /// searcher without one).
+    ///
+    /// # Errors
+    /// A [`TreeError`] for a query the tree cannot answer.
+    fn tree(
+        &self,
+        torus: &Torus,
+        pos: u32,
+        q: &TreeQuery,
+    ) -> Option<Result<TreeExport, TreeError>> {
+        let _ = (torus, pos, q);
+        None
+    }
+
+    /// A copy of this searcher in its present state, for a snapshot of the
+    /// run (`None` when it cannot copy itself: the run is then replayed
+    /// from its start).
+    fn snapshot(&self) -> Option<Box<dyn Searcher>> {
+        None
+    }
+
+    /// Heap bytes the searcher holds (what [`Searcher::snapshot`] copies).
+    fn heap_bytes(&self) -> usize {
+        0
     }
 }
 

@@ -27,10 +27,14 @@
 //! table exactly; 0 clears it whenever the belief changes.
 
 use super::uct::argmax_random;
-use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::param::{Param, ParamKind, Value};
 use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::phase::{
+    BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
+};
+use crate::searchers::tree_export::{export_star, StarNode, TreeError, TreeExport, TreeQuery};
 use crate::searchers::walks::visit::Visit;
 
 /// Per-cell MCTS statistics.
@@ -46,7 +50,19 @@ pub struct CellTable {
     selected: [u32; 4],
     /// Counts are multiplied by this when the belief changes (1 = never).
     decay: f64,
+    /// The loop in flight: the selected move and neighbour, the distinct
+    /// cells marked, the rollout's steps and outcome.
+    pick: usize,
+    child: u32,
+    marked: usize,
+    steps: u32,
+    detected: bool,
+    /// The decision's root and the counts of its star when it began.
+    start: Option<(u32, [u32; 5])>,
 }
+
+/// What the table's counts mean, for people.
+const NOTE: &str = "cells (the paper's table): N counts every loop that passes through a cell, picked or not, over the whole trial (decayed when the belief changes); picks are this decision's selections; passes are this decision's pass-through visits";
 
 /// The default decay factor (`EXPERIMENTS.md`, "The decay of the cells
 /// table", has the measurements it was chosen by).
@@ -156,18 +172,34 @@ impl CellTable {
             } else {
                 decay.clamp(0.0, 1.0)
             },
+            pick: 0,
+            child: 0,
+            marked: 0,
+            steps: 0,
+            detected: false,
+            start: None,
+        }
+    }
+
+    fn mean(&self, cell: u32) -> f64 {
+        let v = self.visits[cell as usize];
+        if v == 0 {
+            0.0
+        } else {
+            self.reward[cell as usize] / v as f64
         }
     }
 }
 
 impl Stats for CellTable {
     /// Starts a decision; clears the table when `reset`.
-    fn begin_decision(&mut self, _root: u32, reset: bool) {
+    fn begin_decision(&mut self, torus: &Torus, root: u32, reset: bool) {
         if reset {
             self.visits.fill(0);
             self.reward.fill(0.0);
         }
         self.selected = [0; 4];
+        self.start = Some((root, star(torus, root).map(|c| self.visits[c as usize])));
     }
 
     fn advance(&mut self, _m: Move) {}
@@ -212,15 +244,64 @@ impl Stats for CellTable {
         }
     }
 
-    /// One loop from `root`: select a neighbour, roll out, backpropagate.
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
+    /// Selection: the neighbour with the highest UCT (unvisited ones
+    /// first, their UCT is +∞), ties at random.
+    #[inline(always)]
+    fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
         let view = self.view(env.torus, root, env.c);
-        // Unvisited neighbours come first (their UCT is +∞), ties at random.
         let values = view.children.map(|ch| ch.uct);
         let a = argmax_random(values, [true; 4], env.rng).unwrap_or(0);
         let child = view.children[a].cell;
         self.selected[a] += 1;
+        (self.pick, self.child) = (a, child);
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.clear();
+            t.push(root);
+            t.push(child);
+        }
+        if let Some(r) = rec {
+            let candidates =
+                std::array::from_fn(|i| Candidate::of(Move::ALL[i], &view.children[i], None));
+            let level =
+                SelectLevel::new(0, root, view.parent_visits, candidates, a, SelectRule::Uct);
+            r.select.push(level);
+        }
+    }
 
+    /// A depth-1 table grows no tree: a neighbour without an entry gets one.
+    #[inline(always)]
+    fn expand(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
+        if let Some(r) = rec {
+            let fresh = self.visits[self.child as usize] == 0;
+            let untried = star(env.torus, root)[1..]
+                .iter()
+                .filter(|&&c| self.visits[c as usize] == 0)
+                .count() as u8;
+            let mv = Move::ALL[self.pick];
+            r.expansion = Some(Expansion {
+                node: fresh.then_some(1 + self.pick as u32),
+                parent: 0,
+                mv: fresh.then_some(mv),
+                cell: self.child,
+                untried,
+                what: if fresh {
+                    "the table had no count for this neighbour: this loop gives it its first"
+                } else {
+                    "nothing is added: the table already counts this neighbour, and a depth-1 search grows no deeper"
+                },
+            });
+        }
+    }
+
+    /// The rollout from the selected neighbour, marking each distinct cell
+    /// with the index of its first visit.
+    // The rollout's own function is faster in wasm (its engines keep the
+    // walk's state in registers there) and slower natively: measured by
+    // instruction counts (benches/instructions.mjs).
+    #[cfg_attr(target_arch = "wasm32", inline(never))]
+    #[cfg_attr(not(target_arch = "wasm32"), inline(always))]
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
+        let child = self.child;
         self.epoch = self.epoch.wrapping_add(1);
         if self.epoch == 0 {
             self.stamp.fill(0);
@@ -231,40 +312,72 @@ impl Stats for CellTable {
         if self.touched.len() < most {
             self.touched.resize(most, (0, 0));
         }
-        if let Some(t) = env.trace.as_deref_mut() {
-            t.clear();
-            t.push(root);
-            t.push(child);
-        }
         // The stamp table is read unchecked in the rollout's inner loop.
         assert_eq!(
             self.stamp.len(),
             env.torus.cells(),
             "table and torus sizes differ"
         );
+        let from = trace_len(env);
         let mut mark = Mark::new(&mut self.stamp, self.epoch, &mut self.touched);
         mark.mark(root, 0);
         mark.mark(child, 1);
         let (steps, detected) = if env.mask[child as usize] != 0 {
             (0, true)
         } else {
-            let trace = env.trace.take();
-            let mut tee = Tee { inner: mark, trace };
-            let out = rollout(env, child, &mut tee);
-            env.trace = tee.trace;
-            mark = tee.inner;
+            let (out, m) = rollout_traced(env, child, mark);
+            mark = m;
             (out.steps, out.detected)
         };
-        let touched = mark.len();
+        self.marked = mark.len();
+        (self.steps, self.detected) = (steps, detected);
+        note_rollout(rec, from, steps, detected);
+    }
+
+    /// Every distinct cell of the loop gets a visit, and each but the root
+    /// the reward of its own stopping time.
+    #[inline(always)]
+    fn back_up(
+        &mut self,
+        env: &mut LoopEnv<'_>,
+        root: u32,
+        rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport {
+        let (steps, detected) = (self.steps, self.detected);
+        let cells = rec.as_ref().map(|_| star(env.torus, root));
+        let before = cells.map(|s| s.map(|c| (self.visits[c as usize], self.mean(c))));
         // τ counts the move to the neighbour plus the rollout; a truncated
         // rollout found nothing and earns nothing.
         let tau = 1 + steps;
         let reward = if detected { 1.0 / tau as f64 } else { 0.0 };
-        for &(c, k) in &self.touched[..touched] {
+        for &(c, k) in &self.touched[..self.marked] {
             self.visits[c as usize] += 1;
             if detected && k > 0 {
                 self.reward[c as usize] += 1.0 / (tau + 1 - k) as f64;
             }
+        }
+        if let (Some(r), Some(cells), Some(before)) = (rec, cells, before) {
+            r.reward = reward;
+            let mut in_star = 0;
+            for i in 0..5 {
+                let (c, (v0, m0)) = (cells[i], before[i]);
+                let v1 = self.visits[c as usize];
+                // The root can be its own neighbour's neighbour only on
+                // a torus of side 2: count each cell once.
+                if v1 != v0 && !cells[..i].contains(&c) {
+                    in_star += 1;
+                }
+                if v1 != v0 {
+                    r.backup.push(BackupEntry {
+                        node: i as u32,
+                        cell: c,
+                        visits: [v0, v1],
+                        value: [m0, self.mean(c)],
+                        picked: i == 1 + self.pick,
+                    });
+                }
+            }
+            r.others = (self.marked - in_star) as u32;
         }
         LoopReport {
             rollout_steps: steps,
@@ -272,6 +385,45 @@ impl Stats for CellTable {
             reward,
             counts: true,
         }
+    }
+
+    fn tree(
+        &self,
+        torus: &Torus,
+        root: u32,
+        c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError> {
+        let view = self.view(torus, root, c);
+        let cells = star(torus, root);
+        let start = match self.start {
+            Some((r, counts)) if r == root => counts,
+            _ => cells.map(|c| self.visits[c as usize]),
+        };
+        let nodes: [StarNode; 5] = std::array::from_fn(|i| {
+            let cell = cells[i];
+            let visits = self.visits[cell as usize];
+            StarNode {
+                mv: (i > 0).then(|| Move::ALL[i - 1]),
+                cell,
+                visits,
+                value: (visits > 0).then(|| self.mean(cell)),
+                gained: visits.saturating_sub(start[i]),
+                picks: if i > 0 {
+                    view.children[i - 1].selected
+                } else {
+                    0
+                },
+            }
+        });
+        export_star(&nodes, q, NOTE)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.visits[..])
+            + std::mem::size_of_val(&self.reward[..])
+            + std::mem::size_of_val(&self.stamp[..])
+            + std::mem::size_of_val(&self.touched[..])
     }
 }
 

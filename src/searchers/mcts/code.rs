@@ -23,9 +23,13 @@
 //! reset each move.
 
 use super::uct::argmax_random;
-use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::phase::{
+    BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
+};
+use crate::searchers::tree_export::{export_star, StarNode, TreeError, TreeExport, TreeQuery};
 use crate::searchers::walks::visit::Visit;
 
 /// Per-cell statistics of the authors' code.
@@ -38,7 +42,22 @@ pub struct CodeTable {
     /// `Qx`: `Nx/K` as of the cell's last selection (∞ when `K = 0`).
     q: Vec<f64>,
     selected: [u32; 4],
+    /// The loop in flight: the neighbour chosen (by move index), whether
+    /// the loop counts (not an expansion rollout), the rollout's outcome.
+    pick: usize,
+    child: u32,
+    counts: bool,
+    loop_steps: u32,
+    detected: bool,
+    /// The star's `Nx` and exploitation terms before the rollout (kept
+    /// only while a loop is recorded).
+    before: [(u32, f64); 5],
+    /// The decision's root and the counts of its star when it began.
+    start: Option<(u32, [u32; 5])>,
 }
+
+/// What the code's counts mean, for people.
+const NOTE: &str = "code (the authors' MATLAB statistics): Nx counts the root and the picked neighbour once a loop and every rollout step into a cell, repeats included, over the whole trial; picks are this decision's selections; passes are this decision's visits from rollouts passing through";
 
 /// Counts a visit for every rollout step (the code's `Nx(sx1,sy1) += 1`).
 struct PassThrough<'a> {
@@ -48,7 +67,10 @@ struct PassThrough<'a> {
 impl Visit for PassThrough<'_> {
     #[inline]
     fn visit(&mut self, cell: u32, _step: u32) {
-        self.visits[cell as usize] += 1;
+        debug_assert!((cell as usize) < self.visits.len());
+        // SAFETY: every cell comes from the torus, and `playout` asserts
+        // that the table has a count per torus cell.
+        unsafe { *self.visits.get_unchecked_mut(cell as usize) += 1 };
     }
 }
 
@@ -60,53 +82,57 @@ impl CodeTable {
             steps: vec![0; cells],
             q: vec![0.0; cells],
             selected: [0; 4],
+            pick: 0,
+            child: 0,
+            counts: false,
+            loop_steps: 0,
+            detected: false,
+            before: [(0, 0.0); 5],
+            start: None,
         }
     }
 
-    /// Visits `root` and `child`, rolls out from `child`, and updates its
-    /// `K` and `Qx`.
+    /// Visits `root` and `child` and rolls out from `child`, a visit for
+    /// every step.
     fn playout(&mut self, env: &mut LoopEnv<'_>, root: u32, child: u32) -> (u32, bool) {
         self.visits[root as usize] += 1;
         self.visits[child as usize] += 1;
-        if let Some(t) = env.trace.as_deref_mut() {
-            t.clear();
-            t.push(root);
-            t.push(child);
+        if env.mask[child as usize] != 0 {
+            return (0, true);
         }
-        let (steps, detected) = if env.mask[child as usize] != 0 {
-            (0, true)
-        } else {
-            let trace = env.trace.take();
-            let mut tee = Tee {
-                inner: PassThrough {
-                    visits: &mut self.visits,
-                },
-                trace,
-            };
-            let out = rollout(env, child, &mut tee);
-            env.trace = tee.trace;
-            (out.steps, out.detected)
+        // The counts are written unchecked in the rollout's inner loop.
+        assert_eq!(
+            self.visits.len(),
+            env.torus.cells(),
+            "table and torus sizes differ"
+        );
+        let visit = PassThrough {
+            visits: &mut self.visits,
         };
-        let c = child as usize;
-        self.steps[c] += steps as u64;
-        // The code's Qx = 1/Kx with Kx = K/Nx; K = 0 gives 1/0 = ∞.
-        self.q[c] = if self.steps[c] == 0 {
-            f64::INFINITY
+        let (out, _) = rollout_traced(env, child, visit);
+        (out.steps, out.detected)
+    }
+
+    /// The exploitation term `Qx/Nx` the decision panel shows for `cell`.
+    fn mean(&self, cell: u32) -> f64 {
+        let v = self.visits[cell as usize];
+        if v == 0 {
+            0.0
         } else {
-            self.visits[c] as f64 / self.steps[c] as f64
-        };
-        (steps, detected)
+            self.q[cell as usize] / v as f64
+        }
     }
 }
 
 impl Stats for CodeTable {
-    fn begin_decision(&mut self, _root: u32, reset: bool) {
+    fn begin_decision(&mut self, torus: &Torus, root: u32, reset: bool) {
         if reset {
             self.visits.fill(0);
             self.steps.fill(0);
             self.q.fill(0.0);
         }
         self.selected = [0; 4];
+        self.start = Some((root, star(torus, root).map(|c| self.visits[c as usize])));
     }
 
     fn advance(&mut self, _m: Move) {}
@@ -129,16 +155,25 @@ impl Stats for CodeTable {
         }
     }
 
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
-        // Expansion first: the code tests the neighbours in this order once
-        // per move, and a count never returns to 0, so testing here on every
-        // call finds them exactly then.
+    /// Selection: the first neighbour never visited (an expansion
+    /// rollout, not a loop), else the highest UCT with the root's visit
+    /// of this loop counted first, as in the code.
+    #[inline(always)]
+    fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
+        // The code tests the neighbours in this order once per move, and a
+        // count never returns to 0, so testing here on every call finds
+        // them exactly then.
         let unvisited = Move::ALL
             .iter()
             .map(|&m| env.torus.step(root, m))
             .position(|cell| self.visits[cell as usize] == 0);
-        let (child, counts) = match unvisited {
-            Some(i) => (env.torus.step(root, Move::ALL[i]), false),
+        let (a, counts, view, rule) = match unvisited {
+            Some(i) => (
+                i,
+                false,
+                self.view(env.torus, root, env.c),
+                SelectRule::Unvisited,
+            ),
             None => {
                 // The root's visit comes before the UCT values, as in the code.
                 self.visits[root as usize] += 1;
@@ -147,17 +182,144 @@ impl Stats for CodeTable {
                 let a =
                     argmax_random(view.children.map(|ch| ch.uct), [true; 4], env.rng).unwrap_or(0);
                 self.selected[a] += 1;
-                (view.children[a].cell, true)
+                (a, true, view, SelectRule::Uct)
             }
         };
+        (self.pick, self.child, self.counts) = (a, view.children[a].cell, counts);
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.clear();
+            t.push(root);
+            t.push(self.child);
+        }
+        if let Some(r) = rec {
+            r.counts = counts;
+            let candidates =
+                std::array::from_fn(|i| Candidate::of(Move::ALL[i], &view.children[i], None));
+            let level = SelectLevel::new(0, root, view.parent_visits, candidates, a, rule);
+            r.select.push(level);
+        }
+    }
+
+    /// No node is added; a neighbour's first rollout is the code's expansion.
+    #[inline(always)]
+    fn expand(&mut self, _env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        if let Some(r) = rec {
+            let mv = Move::ALL[self.pick];
+            r.expansion = Some(Expansion {
+                node: (!self.counts).then_some(1 + self.pick as u32),
+                parent: 0,
+                mv: (!self.counts).then_some(mv),
+                cell: self.child,
+                untried: u8::from(!self.counts),
+                what: if self.counts {
+                    "nothing is added: every neighbour has been rolled out from, and the code searches at depth 1"
+                } else {
+                    "the code's expansion: a neighbour never visited gets one rollout, which is not one of the decision's loops"
+                },
+            });
+        }
+    }
+
+    /// The rollout from the chosen neighbour: the root and the neighbour
+    /// get a visit, and so does every cell a rollout step enters.
+    #[inline(always)]
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
+        let child = self.child;
+        if rec.is_some() {
+            self.before = star(env.torus, root).map(|c| (self.visits[c as usize], self.mean(c)));
+        }
+        let from = trace_len(env);
         let (steps, detected) = self.playout(env, root, child);
+        (self.loop_steps, self.detected) = (steps, detected);
+        note_rollout(rec, from, steps, detected);
+    }
+
+    /// The chosen neighbour's `K` and `Qx`.
+    #[inline(always)]
+    fn back_up(
+        &mut self,
+        env: &mut LoopEnv<'_>,
+        root: u32,
+        rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport {
+        let (steps, detected) = (self.loop_steps, self.detected);
+        let c = self.child as usize;
+        self.steps[c] += steps as u64;
+        // The code's Qx = 1/Kx with Kx = K/Nx; K = 0 gives 1/0 = ∞.
+        self.q[c] = if self.steps[c] == 0 {
+            f64::INFINITY
+        } else {
+            self.visits[c] as f64 / self.steps[c] as f64
+        };
         let tau = 1 + steps;
+        let reward = if detected { 1.0 / tau as f64 } else { 0.0 };
+        if let Some(r) = rec {
+            r.reward = reward;
+            let cells = star(env.torus, root);
+            let mut in_star = 0;
+            for i in 0..5 {
+                let (cell, (v0, m0)) = (cells[i], self.before[i]);
+                let v1 = self.visits[cell as usize];
+                if v1 != v0 && !cells[..i].contains(&cell) {
+                    in_star += v1 - v0;
+                }
+                if v1 != v0 || (i == 1 + self.pick) {
+                    r.backup.push(BackupEntry {
+                        node: i as u32,
+                        cell,
+                        visits: [v0, v1],
+                        value: [m0, self.mean(cell)],
+                        picked: i == 1 + self.pick,
+                    });
+                }
+            }
+            // Every rollout adds 2 visits (root and neighbour) and one a step.
+            r.others = (2 + steps).saturating_sub(in_star);
+        }
         LoopReport {
             rollout_steps: steps,
             detected,
-            reward: if detected { 1.0 / tau as f64 } else { 0.0 },
-            counts,
+            reward,
+            counts: self.counts,
         }
+    }
+
+    fn tree(
+        &self,
+        torus: &Torus,
+        root: u32,
+        c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError> {
+        let view = self.view(torus, root, c);
+        let cells = star(torus, root);
+        let start = match self.start {
+            Some((r, counts)) if r == root => counts,
+            _ => cells.map(|c| self.visits[c as usize]),
+        };
+        let nodes: [StarNode; 5] = std::array::from_fn(|i| {
+            let cell = cells[i];
+            let visits = self.visits[cell as usize];
+            StarNode {
+                mv: (i > 0).then(|| Move::ALL[i - 1]),
+                cell,
+                visits,
+                value: (visits > 0).then(|| self.mean(cell)),
+                gained: visits.saturating_sub(start[i]),
+                picks: if i > 0 {
+                    view.children[i - 1].selected
+                } else {
+                    0
+                },
+            }
+        });
+        export_star(&nodes, q, NOTE)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.visits[..])
+            + std::mem::size_of_val(&self.steps[..])
+            + std::mem::size_of_val(&self.q[..])
     }
 }
 

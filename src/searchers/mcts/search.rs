@@ -9,7 +9,7 @@ use super::pomcp::params::{POMCP_DEPTH, POMCP_EXACT, POMCP_PLAN, POMCP_SCALE};
 use super::pomcp::BeliefTree;
 use super::tree::{Tree, TREE_NODES};
 use super::uct::{final_move, FinalRule};
-use super::variant::{LoopEnv, Stats, Variant};
+use super::variant::{LoopEnv, LoopReport, Stats, Variant};
 use crate::game::belief::Belief;
 use crate::game::coverage::Coverage;
 use crate::game::lattice::{Move, Torus};
@@ -17,8 +17,10 @@ use crate::game::layer::Layer;
 use crate::param::{Param, ParamKind, Settings, Value};
 use crate::searchers::decision::{DecisionView, Planning};
 use crate::searchers::info::{Reads, SearcherInfo};
+use crate::searchers::phase::{PhaseKind, PhaseRecord, PhaseStep};
 use crate::searchers::planning::far_goal::{fallback_target, toward, FarScan};
 use crate::searchers::searcher::{Searcher, Setup, World};
+use crate::searchers::tree_export::{TreeError, TreeExport, TreeQuery};
 use crate::searchers::walks::greedy::EPSILON;
 use crate::searchers::walks::levy::MU;
 use crate::searchers::walks::policy::{Policy, PolicyKind};
@@ -265,7 +267,17 @@ pub fn final_rule(s: &Settings) -> FinalRule {
     }
 }
 
+/// A loop stepped phase by phase: its practice target, the last phase
+/// done, and whether it is recorded.
+#[derive(Clone, Copy, Debug)]
+struct Flight {
+    practice: u32,
+    done: PhaseKind,
+    recording: bool,
+}
+
 /// UCT search with a variant's statistics and a rollout policy.
+#[derive(Clone)]
 pub struct Mcts<S: Stats> {
     stats: S,
     policy: Policy,
@@ -286,6 +298,10 @@ pub struct Mcts<S: Stats> {
     coverage: Coverage,
     /// Scratch for the escape's fallback scan.
     scan: FarScan,
+    /// The loop in flight, when stepped phase by phase.
+    flight: Option<Flight>,
+    /// What the phases of the recorded loop did.
+    record: PhaseRecord,
 }
 
 impl<S: Stats> Mcts<S> {
@@ -311,50 +327,180 @@ impl<S: Stats> Mcts<S> {
             escape_to: None,
             coverage: Coverage::new(setup.torus.cells()),
             scan: FarScan::default(),
+            flight: None,
+            record: PhaseRecord::default(),
         }
+    }
+
+    /// Opens a decision: counts stalled moves and, when stuck in searched
+    /// ground, returns the escape's move instead of deliberating.
+    fn open(&mut self, w: &mut World<'_>) -> Option<Move> {
+        let generation = w.belief.generation();
+        if self.generation == Some(generation) {
+            self.stalled += 1;
+        } else {
+            self.stalled = 0;
+            self.escape_to = None;
+        }
+        if self.escape > 0 && self.stalled >= self.escape && !self.stats.holds_plan() {
+            // Stuck in searched ground: walk to unsearched mass without
+            // deliberating (the target keeps mass until the belief
+            // changes, which ends the escape).
+            if self.escape_to.is_none() {
+                self.escape_to = fallback_target(
+                    w.torus,
+                    w.sensor,
+                    w.belief,
+                    &self.coverage,
+                    w.pos,
+                    None,
+                    &mut self.scan,
+                    None,
+                )
+                .map(|(c, _)| c);
+            }
+            if let Some(target) = self.escape_to {
+                let m = toward(w.torus, w.pos, target, Move::Up);
+                self.generation = Some(generation);
+                self.stats.advance(m);
+                return Some(m);
+            }
+        }
+        w.budget.open();
+        if self.generation.is_some_and(|g| g != generation) {
+            self.stats.belief_changed();
+        }
+        self.generation = Some(generation);
+        self.stats
+            .begin_decision(w.torus, w.pos, self.reset_each_move);
+        None
+    }
+
+    /// A practice target for the next loop.
+    fn practice(w: &mut World<'_>) -> u32 {
+        if S::POSTERIOR_TARGETS {
+            w.belief.posterior_target(w.rng)
+        } else {
+            w.belief.practice_target(w.rng)
+        }
+    }
+
+    /// Runs phase `kind` of the loop chasing `practice` (armed), recording
+    /// it when `recording`; the back-up returns the loop's report.
+    fn run_phase(
+        &mut self,
+        w: &mut World<'_>,
+        practice: u32,
+        kind: PhaseKind,
+        recording: bool,
+    ) -> Option<LoopReport> {
+        // A recorded loop's trace is the record's; otherwise the ring's.
+        let mut trace = std::mem::take(&mut self.record.trace);
+        let pos = w.pos;
+        let mut env = LoopEnv {
+            torus: w.torus,
+            belief: w.belief,
+            sensor: w.sensor,
+            mask: w.sensor.mask(),
+            practice,
+            policy: &mut self.policy,
+            rng: w.rng,
+            rollout_cap: self.rollout_cap,
+            c: self.c,
+            trace: if recording {
+                Some(&mut trace)
+            } else {
+                w.traces.slot()
+            },
+        };
+        let rec = recording.then_some(&mut self.record);
+        let report = match kind {
+            PhaseKind::Select => {
+                self.stats.select(&mut env, pos, rec);
+                None
+            }
+            PhaseKind::Expand => {
+                self.stats.expand(&mut env, pos, rec);
+                None
+            }
+            PhaseKind::Rollout => {
+                self.stats.roll_out(&mut env, pos, rec);
+                None
+            }
+            PhaseKind::Backup => Some(self.stats.back_up(&mut env, pos, rec)),
+        };
+        self.record.trace = trace;
+        if recording {
+            self.record.phase = Some(kind);
+            if let Some(r) = report {
+                self.record.counts = r.counts;
+            }
+        }
+        report
+    }
+
+    /// Counts a finished loop (a recorded one's trace goes to the ring);
+    /// returns true when it is one of the decision's loops.
+    fn end_loop(
+        &mut self,
+        w: &mut World<'_>,
+        practice: u32,
+        report: LoopReport,
+        recorded: bool,
+    ) -> bool {
+        if recorded {
+            if let Some(slot) = w.traces.slot() {
+                slot.clear();
+                slot.extend_from_slice(&self.record.trace);
+            }
+        }
+        w.traces.commit(practice);
+        w.counters.add(report.rollout_steps, report.detected);
+        if report.counts {
+            w.budget.record(report.rollout_steps, report.detected);
+        }
+        report.counts
+    }
+
+    /// Ends the decision: the statistics' own move or the final rule's.
+    fn decide(&mut self, w: &mut World<'_>) -> Move {
+        let m = match self
+            .stats
+            .conclude(w.torus, w.sensor, w.belief, self.rollout_cap)
+        {
+            Some(m) => m,
+            None => final_move(
+                &self.stats.view(w.torus, w.pos, self.c),
+                self.final_rule,
+                w.rng,
+            ),
+        };
+        self.stats.advance(m);
+        w.budget.close();
+        m
+    }
+
+    /// Finishes the loop in flight with the phases it has left, as a loop
+    /// run whole would; returns true when it counts against the budget.
+    fn land(&mut self, w: &mut World<'_>, f: Flight) -> bool {
+        w.sensor.arm(f.practice);
+        let mut kind = f.done;
+        let report = loop {
+            kind = kind.next().expect("a loop in flight has yet to back up");
+            if let Some(r) = self.run_phase(w, f.practice, kind, f.recording) {
+                break r;
+            }
+        };
+        self.end_loop(w, f.practice, report, f.recording)
     }
 }
 
-impl<S: Stats> Searcher for Mcts<S> {
+impl<S: Stats + 'static> Searcher for Mcts<S> {
     fn think(&mut self, w: &mut World<'_>, max_loops: u32) -> Option<Move> {
         if !w.budget.is_open() {
-            let generation = w.belief.generation();
-            if self.generation == Some(generation) {
-                self.stalled += 1;
-            } else {
-                self.stalled = 0;
-                self.escape_to = None;
+            if let Some(m) = self.open(w) {
+                return Some(m);
             }
-            if self.escape > 0 && self.stalled >= self.escape && !self.stats.holds_plan() {
-                // Stuck in searched ground: walk to unsearched mass without
-                // deliberating (the target keeps mass until the belief
-                // changes, which ends the escape).
-                if self.escape_to.is_none() {
-                    self.escape_to = fallback_target(
-                        w.torus,
-                        w.sensor,
-                        w.belief,
-                        &self.coverage,
-                        w.pos,
-                        None,
-                        &mut self.scan,
-                        None,
-                    )
-                    .map(|(c, _)| c);
-                }
-                if let Some(target) = self.escape_to {
-                    let m = toward(w.torus, w.pos, target, Move::Up);
-                    self.generation = Some(generation);
-                    self.stats.advance(m);
-                    return Some(m);
-                }
-            }
-            w.budget.open();
-            if self.generation.is_some_and(|g| g != generation) {
-                self.stats.belief_changed();
-            }
-            self.generation = Some(generation);
-            self.stats.begin_decision(w.pos, self.reset_each_move);
         }
         if !self
             .stats
@@ -363,12 +509,11 @@ impl<S: Stats> Searcher for Mcts<S> {
             return None;
         }
         let mut done = 0;
+        if let Some(f) = self.flight.take() {
+            done += u32::from(self.land(w, f));
+        }
         while done < max_loops && !w.budget.spent() {
-            let practice = if S::POSTERIOR_TARGETS {
-                w.belief.posterior_target(w.rng)
-            } else {
-                w.belief.practice_target(w.rng)
-            };
+            let practice = Self::practice(w);
             w.sensor.arm(practice);
             let mut env = LoopEnv {
                 torus: w.torus,
@@ -393,20 +538,77 @@ impl<S: Stats> Searcher for Mcts<S> {
         if !w.budget.spent() {
             return None;
         }
-        let m = match self
+        Some(self.decide(w))
+    }
+
+    fn think_phase(&mut self, w: &mut World<'_>, record: bool) -> PhaseStep {
+        if !w.budget.is_open() {
+            if let Some(m) = self.open(w) {
+                return PhaseStep::Work(Some(m));
+            }
+        }
+        if !self
             .stats
-            .conclude(w.torus, w.sensor, w.belief, self.rollout_cap)
+            .prepare(w.torus, w.sensor, w.belief, w.pos, self.rollout_cap)
         {
-            Some(m) => m,
-            None => final_move(
-                &self.stats.view(w.torus, w.pos, self.c),
-                self.final_rule,
-                w.rng,
+            return PhaseStep::Work(None);
+        }
+        let (practice, kind, recording) = match self.flight {
+            Some(f) => (
+                f.practice,
+                f.done.next().expect("a loop in flight has yet to back up"),
+                f.recording,
             ),
+            None => {
+                let practice = Self::practice(w);
+                if record {
+                    self.record.begin(practice);
+                }
+                (practice, PhaseKind::Select, record)
+            }
         };
-        self.stats.advance(m);
-        w.budget.close();
-        Some(m)
+        w.sensor.arm(practice);
+        match self.run_phase(w, practice, kind, recording) {
+            None => {
+                self.flight = Some(Flight {
+                    practice,
+                    done: kind,
+                    recording,
+                });
+                PhaseStep::Phase(kind, None)
+            }
+            Some(report) => {
+                self.flight = None;
+                self.end_loop(w, practice, report, recording);
+                let m = w.budget.spent().then(|| self.decide(w));
+                PhaseStep::Phase(PhaseKind::Backup, m)
+            }
+        }
+    }
+
+    fn phase(&self) -> Option<&PhaseRecord> {
+        self.record.phase.is_some().then_some(&self.record)
+    }
+
+    fn tree(
+        &self,
+        torus: &Torus,
+        pos: u32,
+        q: &TreeQuery,
+    ) -> Option<Result<TreeExport, TreeError>> {
+        Some(self.stats.tree(torus, pos, self.c, q))
+    }
+
+    fn snapshot(&self) -> Option<Box<dyn Searcher>> {
+        Some(Box::new(self.clone()))
+    }
+
+    fn heap_bytes(&self) -> usize {
+        self.stats.heap_bytes()
+            + self.policy.heap_bytes()
+            + self.coverage.heap_bytes()
+            + self.scan.heap_bytes()
+            + self.record.heap_bytes()
     }
 
     fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {}

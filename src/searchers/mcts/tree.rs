@@ -3,11 +3,15 @@
 //! each real move, in a bounded arena.
 
 use super::uct::argmax_random;
-use super::variant::{rollout, LoopEnv, LoopReport, Stats, Tee};
+use super::variant::{note_rollout, rollout_traced, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::game::rng;
 use crate::param::{Param, ParamKind, Value};
 use crate::searchers::decision::{uct_terms, ChildStat, DecisionView};
+use crate::searchers::phase::{
+    BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
+};
+use crate::searchers::tree_export::{export_arena, Arena, TreeError, TreeExport, TreeQuery};
 use crate::searchers::walks::visit::NoVisit;
 
 const NONE: u32 = u32::MAX;
@@ -55,7 +59,7 @@ impl Node {
 }
 
 /// A search tree rooted at the searcher's cell. The root is always node 0.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Tree {
     nodes: Vec<Node>,
     scratch: Vec<Node>,
@@ -63,6 +67,51 @@ pub struct Tree {
     path: Vec<u32>,
     max_nodes: usize,
     selected: [u32; 4],
+    /// The loop in flight: the node reached, its depth, whether its cell
+    /// detects the practice target, the rollout's outcome.
+    node: u32,
+    depth: u32,
+    terminal: bool,
+    steps: u32,
+    detected: bool,
+}
+
+/// A copy holds the tree, not the scratch room for re-rooting it.
+impl Clone for Tree {
+    fn clone(&self) -> Tree {
+        Tree {
+            nodes: self.nodes.clone(),
+            scratch: Vec::new(),
+            stack: Vec::new(),
+            path: self.path.clone(),
+            ..*self
+        }
+    }
+}
+
+/// What a tree's counts mean, for people.
+const NOTE: &str = "tree: N counts the loops through a node (the root's since it was created, kept across real moves with its subtree); a node's N is 1 more than its children's sum when it was the leaf a loop expanded, or its cell detected the practice target; picks are this decision's selections at the root";
+
+/// The tree as [`Arena`] reads it.
+struct View<'a>(&'a [Node]);
+
+impl Arena for View<'_> {
+    fn nodes(&self) -> usize {
+        self.0.len()
+    }
+    fn children(&self, id: u32) -> [u32; 4] {
+        self.0[id as usize].children
+    }
+    fn visits(&self, id: u32) -> u32 {
+        self.0[id as usize].visits
+    }
+    fn cell(&self, id: u32) -> u32 {
+        self.0[id as usize].cell
+    }
+    fn value(&self, id: u32) -> Option<f64> {
+        let n = &self.0[id as usize];
+        (n.visits > 0).then(|| n.reward / n.visits as f64)
+    }
 }
 
 impl Tree {
@@ -75,6 +124,11 @@ impl Tree {
             path: Vec::new(),
             max_nodes: max_nodes.max(MIN_MAX_NODES) as usize,
             selected: [0; 4],
+            node: 0,
+            depth: 0,
+            terminal: false,
+            steps: 0,
+            detected: false,
         }
     }
 
@@ -99,11 +153,45 @@ impl Tree {
         }
         argmax_random(values, valid, env.rng)
     }
+
+    /// The four moves at `node` as [`Tree::select_child`] saw them.
+    fn candidates(&self, torus: &Torus, node: u32, c: f64) -> [Candidate; 4] {
+        let n = &self.nodes[node as usize];
+        std::array::from_fn(|i| {
+            let m = Move::ALL[i];
+            match n.children[i] {
+                NONE => Candidate::missing(m, torus.step(n.cell, m)),
+                k => {
+                    let ch = &self.nodes[k as usize];
+                    let stat = ChildStat::new(ch.cell, ch.visits, ch.reward, n.visits, c, 0);
+                    Candidate::of(m, &stat, Some(k))
+                }
+            }
+        })
+    }
+
+    /// True when `node` has an untried move and the arena has room.
+    fn expandable(&self, node: u32) -> bool {
+        self.nodes.len() < self.max_nodes && self.nodes[node as usize].children.contains(&NONE)
+    }
+
+    /// Steps into `id` (a child of the node reached): the path and trace
+    /// grow, and the loop ends there if its cell detects the practice target.
+    fn enter(&mut self, env: &mut LoopEnv<'_>, id: u32) {
+        self.node = id;
+        self.depth += 1;
+        self.path.push(id);
+        let cell = self.nodes[id as usize].cell;
+        if let Some(t) = env.trace.as_deref_mut() {
+            t.push(cell);
+        }
+        self.terminal = env.mask[cell as usize] != 0;
+    }
 }
 
 impl Stats for Tree {
     /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
-    fn begin_decision(&mut self, root: u32, _reset: bool) {
+    fn begin_decision(&mut self, _torus: &Torus, root: u32, _reset: bool) {
         if self.nodes.first().map(|n| n.cell) != Some(root) {
             self.nodes.clear();
             self.nodes.push(Node::leaf(root));
@@ -135,93 +223,143 @@ impl Stats for Tree {
         }
     }
 
-    /// One loop: descend by UCT, expand one node, roll out, backpropagate.
+    /// Selection: down by UCT from the root while the node reached has
+    /// no untried move (or the arena is full), until a cell detects the
+    /// practice target.
     ///
     /// # Panics
     /// If called before [`Stats::begin_decision`].
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, _root: u32) -> LoopReport {
+    fn select(&mut self, env: &mut LoopEnv<'_>, _root: u32, mut rec: Option<&mut PhaseRecord>) {
         self.path.clear();
         self.path.push(0);
         if let Some(t) = env.trace.as_deref_mut() {
             t.clear();
             t.push(self.nodes[0].cell);
         }
-        let mut node = 0u32;
-        let mut depth = 0u32;
-        let mut terminal = false;
-        loop {
-            let cur = self.nodes[node as usize];
-            let mut miss = [0usize; 4];
-            let mut k = 0;
-            for i in 0..4 {
-                if cur.children[i] == NONE {
-                    miss[k] = i;
-                    k += 1;
-                }
-            }
-            let next = if k > 0 && self.nodes.len() < self.max_nodes {
-                // Expansion: one new node per loop, a random untried move.
-                let i = miss[rng::below(env.rng, k as u32) as usize];
-                let id = self.nodes.len() as u32;
-                self.nodes
-                    .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
-                self.nodes[node as usize].children[i] = id;
-                if depth == 0 {
-                    self.selected[i] += 1;
-                }
-                Some((id, true))
-            } else {
-                match self.select_child(node, env) {
-                    Some(i) => {
-                        if depth == 0 {
-                            self.selected[i] += 1;
-                        }
-                        Some((cur.children[i], false))
-                    }
-                    None => None,
-                }
+        (self.node, self.depth, self.terminal) = (0, 0, false);
+        while !self.terminal && !self.expandable(self.node) {
+            let node = self.node;
+            let Some(i) = self.select_child(node, env) else {
+                break;
             };
-            let Some((id, expanded)) = next else { break };
-            node = id;
-            depth += 1;
-            self.path.push(id);
-            let cell = self.nodes[id as usize].cell;
-            if let Some(t) = env.trace.as_deref_mut() {
-                t.push(cell);
+            if self.depth == 0 {
+                self.selected[i] += 1;
             }
-            if env.mask[cell as usize] != 0 {
-                terminal = true;
-                break;
+            if let Some(r) = rec.as_deref_mut() {
+                // Selection changed no statistic the terms read.
+                let cands = self.candidates(env.torus, node, env.c);
+                let n = &self.nodes[node as usize];
+                let level = SelectLevel::new(node, n.cell, n.visits, cands, i, SelectRule::Uct);
+                r.select.push(level);
             }
-            if expanded {
-                break;
+            self.enter(env, self.nodes[node as usize].children[i]);
+        }
+    }
+
+    /// Expansion: a random untried move of the node reached becomes a
+    /// new node (one per loop), unless the loop already ended.
+    fn expand(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let node = self.node;
+        let cur = self.nodes[node as usize];
+        let mut miss = [0usize; 4];
+        let mut k = 0;
+        for i in 0..4 {
+            if cur.children[i] == NONE {
+                miss[k] = i;
+                k += 1;
             }
         }
-        let (steps, detected) = if terminal {
+        if self.terminal || !self.expandable(node) {
+            if let Some(r) = rec {
+                r.expansion = Some(Expansion {
+                    node: None,
+                    parent: node,
+                    mv: None,
+                    cell: cur.cell,
+                    untried: k as u8,
+                    what: if self.terminal {
+                        "nothing is added: the selected node's cell detects the practice target"
+                    } else {
+                        "nothing is added: the tree has reached its node cap"
+                    },
+                });
+            }
+            return;
+        }
+        let i = miss[rng::below(env.rng, k as u32) as usize];
+        let id = self.nodes.len() as u32;
+        let cell = env.torus.step(cur.cell, Move::ALL[i]);
+        self.nodes.push(Node::leaf(cell));
+        self.nodes[node as usize].children[i] = id;
+        if self.depth == 0 {
+            self.selected[i] += 1;
+        }
+        self.enter(env, id);
+        if let Some(r) = rec {
+            r.expansion = Some(Expansion {
+                node: Some(id),
+                parent: node,
+                mv: Some(Move::ALL[i]),
+                cell,
+                untried: k as u8,
+                what: if self.terminal {
+                    "a new node, drawn among the untried moves; its cell detects the practice target"
+                } else {
+                    "a new node, drawn among the untried moves"
+                },
+            });
+        }
+    }
+
+    /// The rollout from the node reached (none when its cell detects the
+    /// practice target).
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let from = trace_len(env);
+        let (steps, detected) = if self.terminal {
             (0, true)
         } else {
-            let from = self.nodes[node as usize].cell;
-            let trace = env.trace.take();
-            let mut tee = Tee {
-                inner: NoVisit,
-                trace,
-            };
-            let out = rollout(env, from, &mut tee);
-            env.trace = tee.trace;
+            let from = self.nodes[self.node as usize].cell;
+            let (out, _) = rollout_traced(env, from, NoVisit);
             (out.steps, out.detected)
         };
+        (self.steps, self.detected) = (steps, detected);
+        note_rollout(rec, from, steps, detected);
+    }
+
+    /// Backpropagation: each node of the path gets a visit and 1/τ.
+    fn back_up(
+        &mut self,
+        _env: &mut LoopEnv<'_>,
+        _root: u32,
+        mut rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport {
+        let (steps, detected) = (self.steps, self.detected);
         // τ counts the tree path plus the rollout; depth ≥ 1 because the
         // root always has a child (the arena holds at least 16 nodes).
-        let tau = depth + steps;
+        let tau = self.depth + steps;
         let reward = if detected && tau > 0 {
             1.0 / tau as f64
         } else {
             0.0
         };
-        for &id in &self.path {
+        for (at, &id) in self.path.iter().enumerate() {
             let n = &mut self.nodes[id as usize];
+            let old = (n.visits, n.reward);
             n.visits += 1;
             n.reward += reward;
+            if let Some(r) = rec.as_deref_mut() {
+                let mean = |v: u32, q: f64| if v == 0 { 0.0 } else { q / v as f64 };
+                r.backup.push(BackupEntry {
+                    node: id,
+                    cell: n.cell,
+                    visits: [old.0, n.visits],
+                    value: [mean(old.0, old.1), mean(n.visits, n.reward)],
+                    picked: at == 1,
+                });
+            }
+        }
+        if let Some(r) = rec {
+            r.reward = reward;
         }
         LoopReport {
             rollout_steps: steps,
@@ -229,6 +367,20 @@ impl Stats for Tree {
             reward,
             counts: true,
         }
+    }
+
+    fn tree(
+        &self,
+        _torus: &Torus,
+        _root: u32,
+        _c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError> {
+        export_arena(&View(&self.nodes), self.selected, q, NOTE)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.nodes[..]) + std::mem::size_of_val(&self.path[..])
     }
 
     /// Re-roots the tree at the child reached by `m`, keeping its subtree.
@@ -321,7 +473,7 @@ mod tests {
     #[test]
     fn the_arena_stops_at_its_cap_and_every_loop_passes_a_root_child() {
         let mut tree = Tree::new(MIN_MAX_NODES);
-        tree.begin_decision(5, false);
+        tree.begin_decision(&Torus::new(12).unwrap(), 5, false);
         run(&mut tree, 5, 300, 50);
         // Full at exactly its cap, then the loops only select.
         assert_eq!(tree.nodes.len(), MIN_MAX_NODES as usize);
@@ -339,7 +491,7 @@ mod tests {
     #[test]
     fn the_visits_layer_adds_each_nodes_visits_to_its_cell() {
         let mut tree = Tree::new(DEFAULT_MAX_NODES);
-        tree.begin_decision(5, false);
+        tree.begin_decision(&Torus::new(12).unwrap(), 5, false);
         let c = run(&mut tree, 5, 200, 50);
         let cells = (c.n * c.n) as usize;
         let mut want = vec![0u32; cells];
@@ -356,7 +508,7 @@ mod tests {
     #[test]
     fn a_real_move_keeps_the_childs_subtree_as_the_new_tree() {
         let mut tree = Tree::new(DEFAULT_MAX_NODES);
-        tree.begin_decision(5, false);
+        tree.begin_decision(&Torus::new(12).unwrap(), 5, false);
         run(&mut tree, 5, 200, 50);
         let old = tree.clone();
         let kid = old.nodes[0].children[1];
@@ -383,9 +535,9 @@ mod tests {
         // The next decision keeps it when it starts at its root, and a
         // decision elsewhere starts a new tree.
         let cell = tree.nodes[0].cell;
-        tree.begin_decision(cell, false);
+        tree.begin_decision(&Torus::new(12).unwrap(), cell, false);
         assert_eq!(tree.nodes.len(), walked);
-        tree.begin_decision(5, false);
+        tree.begin_decision(&Torus::new(12).unwrap(), 5, false);
         assert_eq!(tree.nodes.len(), 1);
         assert_eq!(tree.nodes[0].cell, 5);
         // A move with no child leaves nothing to keep.

@@ -6,6 +6,8 @@ use crate::game::lattice::{Move, Sensor, Torus};
 use crate::game::named::named_enum;
 use crate::game::rng::Rng;
 use crate::searchers::decision::{DecisionView, Planning};
+use crate::searchers::phase::PhaseRecord;
+use crate::searchers::tree_export::{TreeError, TreeExport, TreeQuery};
 use crate::searchers::walks::policy::Policy;
 use crate::searchers::walks::visit::{Outcome, Visit};
 
@@ -27,14 +29,54 @@ named_enum! {
 /// A variant's statistics: what the MCTS searcher
 /// ([`crate::searchers::mcts::search::Mcts`]) needs from `cells`, `tree`,
 /// `code` and `pomcp`.
-pub trait Stats {
+///
+/// A loop is its four phases in order, [`Stats::select`],
+/// [`Stats::expand`], [`Stats::roll_out`] and [`Stats::back_up`], each
+/// given the same environment (the practice target armed): run one after
+/// the other ([`Stats::iterate`]) or a call apart, they draw the same
+/// random numbers and leave the same statistics. Each phase fills `rec`,
+/// when given, with what it did.
+pub trait Stats: Clone {
     /// True when practice targets come from the posterior whatever the
     /// `belief` parameter says.
     const POSTERIOR_TARGETS: bool = false;
     /// Starts a decision at `root`; `reset` clears persistent statistics.
-    fn begin_decision(&mut self, root: u32, reset: bool);
-    /// One loop from `root`: select, roll out, backpropagate.
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport;
+    fn begin_decision(&mut self, torus: &Torus, root: u32, reset: bool);
+    /// Selection: from `root` by UCT down to the node to expand (the
+    /// tables: one of the root's four neighbours).
+    fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>);
+    /// Expansion: one node added below the selected one, if any.
+    fn expand(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>);
+    /// The rollout from the loop's leaf.
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>);
+    /// Backpropagation: the loop's reward to the nodes it went through.
+    fn back_up(
+        &mut self,
+        env: &mut LoopEnv<'_>,
+        root: u32,
+        rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport;
+    /// One loop from `root`: select, expand, roll out, backpropagate.
+    #[inline]
+    fn iterate(&mut self, env: &mut LoopEnv<'_>, root: u32) -> LoopReport {
+        self.select(env, root, None);
+        self.expand(env, root, None);
+        self.roll_out(env, root, None);
+        self.back_up(env, root, None)
+    }
+    /// The decision's tree (a table's star) at `root`, cut by `q`.
+    ///
+    /// # Errors
+    /// A [`TreeError`] for a query the tree cannot answer.
+    fn tree(
+        &self,
+        torus: &Torus,
+        root: u32,
+        c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError>;
+    /// Heap bytes held (what a copy of the statistics allocates).
+    fn heap_bytes(&self) -> usize;
     /// The decision statistics at `root`.
     fn view(&self, torus: &Torus, root: u32, c: f64) -> DecisionView;
     /// The real move `m` was made (a tree keeps that subtree).
@@ -141,9 +183,58 @@ impl<V: Visit> Visit for Tee<'_, V> {
     }
 }
 
+/// Runs the rollout policy from `from` with `visit`, recording its cells in
+/// the loop's trace when there is one; returns the outcome and the visitor.
+/// Without a trace the walk runs with `visit` alone: no test of the trace
+/// at every step.
+pub(crate) fn rollout_traced<V: Visit>(env: &mut LoopEnv<'_>, from: u32, visit: V) -> (Outcome, V) {
+    match env.trace.take() {
+        None => {
+            let mut v = visit;
+            let out = rollout(env, from, &mut v);
+            (out, v)
+        }
+        Some(t) => {
+            let mut tee = Tee {
+                inner: visit,
+                trace: Some(t),
+            };
+            let out = rollout(env, from, &mut tee);
+            env.trace = tee.trace;
+            (out, tee.inner)
+        }
+    }
+}
+
 /// Runs the rollout policy from `from` and returns the outcome.
 pub(crate) fn rollout<V: Visit>(env: &mut LoopEnv<'_>, from: u32, visit: &mut V) -> Outcome {
     env.policy.begin(from, env.practice);
     env.policy
         .rollout(env.torus, env.mask, env.rng, from, env.rollout_cap, visit)
+}
+
+/// The root and its four neighbours (in `Move::ALL` order): the cells a
+/// table variant's decision selects among.
+pub(crate) fn star(torus: &Torus, root: u32) -> [u32; 5] {
+    let mut s = [root; 5];
+    for (i, &m) in Move::ALL.iter().enumerate() {
+        s[i + 1] = torus.step(root, m);
+    }
+    s
+}
+
+/// Cells recorded in the loop's trace so far (where its rollout starts).
+pub(crate) fn trace_len(env: &LoopEnv<'_>) -> u32 {
+    env.trace.as_deref().map_or(0, |t| t.len() as u32)
+}
+
+/// Notes the rollout in `rec`: where it starts in the trace, its steps
+/// and whether it found the practice target.
+pub(crate) fn note_rollout(rec: Option<&mut PhaseRecord>, from: u32, steps: u32, detected: bool) {
+    if let Some(r) = rec {
+        r.rollout_from = from;
+        r.rollout_steps = steps;
+        r.detected = detected;
+        r.truncated = !detected;
+    }
 }

@@ -66,6 +66,15 @@ pub struct FarScan {
 }
 
 impl FarScan {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(&self.buf[..])
+            + size_of_val(&self.rows[..])
+            + size_of_val(&self.fresh[..])
+            + size_of_val(&self.gains[..])
+    }
+
     /// A run number no other run in the process has. A scan given a run
     /// says that since the last scan of that run with this scratch (if
     /// any), cells have only been covered or searched, on the same

@@ -341,6 +341,11 @@ pub struct Levy {
 }
 
 impl Levy {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.lengths.bins[..]) + std::mem::size_of_val(&self.dirs.table[..])
+    }
+
     /// A walker with exponent `mu` in (1, 3] on a lattice of side `n`.
     ///
     /// # Panics

@@ -196,6 +196,11 @@ pub struct Nsarw {
 }
 
 impl Nsarw {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(&self.val[..]) + std::mem::size_of_val(&self.seen[..])
+    }
+
     /// A walker for a lattice of `cells` cells.
     pub fn new(cells: usize) -> Nsarw {
         Nsarw {

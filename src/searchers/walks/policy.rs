@@ -38,6 +38,15 @@ pub enum Policy {
 }
 
 impl Policy {
+    /// Heap bytes held (what a copy allocates).
+    pub fn heap_bytes(&self) -> usize {
+        match self {
+            Policy::Rw(_) | Policy::Greedy(_) => 0,
+            Policy::Levy(l) => l.heap_bytes(),
+            Policy::Nsarw(w) => w.heap_bytes(),
+        }
+    }
+
     /// Builds the policy `kind` for lattice `torus`.
     ///
     /// `mu` is the Lévy exponent and `epsilon` the greedy noise; both are

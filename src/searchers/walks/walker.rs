@@ -54,6 +54,7 @@ pub static NSARW: SearcherInfo = SearcherInfo {
 };
 
 /// A walk used as a searcher: one real move per decision, no deliberation.
+#[derive(Clone)]
 pub struct Walker {
     policy: Policy,
 }
@@ -82,5 +83,13 @@ impl Searcher for Walker {
             Layer::Visits | Layer::Walker => self.policy.counts(),
             _ => None,
         }
+    }
+
+    fn snapshot(&self) -> Option<Box<dyn Searcher>> {
+        Some(Box::new(self.clone()))
+    }
+
+    fn heap_bytes(&self) -> usize {
+        self.policy.heap_bytes()
     }
 }

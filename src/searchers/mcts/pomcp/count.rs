@@ -5,6 +5,7 @@ use crate::searchers::mcts::variant::LoopEnv;
 
 /// A loop's running count: the simulated moves so far and what they have
 /// covered, the practice target's detection, and the return.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Count {
     /// The unsearched planning mass at the decision.
     pub mass: f64,

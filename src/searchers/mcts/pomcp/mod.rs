@@ -8,9 +8,11 @@
 //! * [`params`]: its parameters and return scales.
 //! * [`plan`]: the plan's completion and the walk along it.
 //! * [`count`]: a loop's running count of the expected steps left.
+//! * `descent`: a loop's selection, expansion and back-up, and the tree as data.
 //! * the tree, its values and a loop's phases are here.
 
 pub mod count;
+mod descent;
 pub mod node;
 pub mod params;
 pub mod plan;
@@ -18,15 +20,16 @@ pub mod plan;
 use crate::game::belief::BeliefState;
 use crate::game::coverage::Coverage;
 use crate::game::lattice::{Move, Sensor, Torus};
-use crate::game::rng;
 use crate::searchers::decision::{ChildStat, DecisionView, Planning};
 use crate::searchers::mcts::plan_walk::PlanWalk;
 use crate::searchers::mcts::uct::argmax_random;
-use crate::searchers::mcts::variant::{LoopEnv, LoopReport, Stats};
+use crate::searchers::mcts::variant::{note_rollout, trace_len, LoopEnv, LoopReport, Stats};
+use crate::searchers::phase::PhaseRecord;
 use crate::searchers::planning::completion::{Completion, SLICE_WORK};
 use crate::searchers::planning::coverage_walk::CoverageWalk;
 use crate::searchers::planning::lookahead::Lookahead;
 use crate::searchers::planning::plan_cache::{self, PlanKey};
+use crate::searchers::tree_export::{TreeError, TreeExport, TreeQuery};
 use count::Count;
 use node::{Node, NONE};
 use params::ReturnScale;
@@ -87,6 +90,12 @@ pub struct BeliefTree {
     /// A new plan being made in slices, before the decision's first loop,
     /// and the key it is kept under once made.
     making: Option<(Completion, PlanKey)>,
+    /// The loop in flight: its running count, the node reached, the
+    /// simulated moves of its tree path, and whether its rollout was cut.
+    count: Count,
+    node: u32,
+    path_t: u32,
+    cut: bool,
 }
 
 impl BeliefTree {
@@ -130,6 +139,10 @@ impl BeliefTree {
             replay: false,
             planned: None,
             making: None,
+            count: Count::default(),
+            node: 0,
+            path_t: 0,
+            cut: false,
         }
     }
 
@@ -412,70 +425,13 @@ impl BeliefTree {
         }
     }
 
-    /// Selection and expansion: down the tree by UCT from the root (along
-    /// the plan when the loop replays it), until a node is added.
-    fn descend(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) {
-        let mut node = 0u32;
-        while !count.done() {
-            let cur = self.nodes[node as usize];
-            let mut miss = [0usize; 4];
-            let mut k = 0;
-            for i in 0..4 {
-                if cur.children[i] == NONE {
-                    miss[k] = i;
-                    k += 1;
-                }
-            }
-            let forced = if self.replay && node == 0 {
-                self.plan_move(env.torus, cur.cell)
-            } else {
-                None
-            };
-            let (i, id, expanded) = if let Some(i) = forced {
-                // The plan's loop: its first cell, then the plan walk uncut.
-                if cur.children[i] == NONE {
-                    if self.nodes.len() >= self.max_nodes {
-                        self.replay = false;
-                        break;
-                    }
-                    let id = self.nodes.len() as u32;
-                    self.nodes
-                        .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
-                    self.nodes[node as usize].children[i] = id;
-                }
-                (i, self.nodes[node as usize].children[i], true)
-            } else if k > 0 && self.nodes.len() < self.max_nodes {
-                let i = miss[rng::below(env.rng, k as u32) as usize];
-                let id = self.nodes.len() as u32;
-                self.nodes
-                    .push(Node::leaf(env.torus.step(cur.cell, Move::ALL[i])));
-                self.nodes[node as usize].children[i] = id;
-                (i, id, true)
-            } else {
-                match self.select_child(node, env) {
-                    Some(i) => (i, cur.children[i], false),
-                    None => break,
-                }
-            };
-            if node == 0 {
-                self.selected[i] += 1;
-            }
-            node = id;
-            self.path.push(id);
-            count.advance_to(env, &mut self.cov, self.nodes[id as usize].cell);
-            if expanded {
-                break;
-            }
-        }
-    }
-
     /// The rollout, along the plan or by the coverage walk; returns true
     /// when it was cut and its tail charged from the reference. It may be
     /// cut once it has covered [`CUT_SHARE`] of what the tree left: before
     /// that, every rollout would be charged the same reference tail, and
     /// the returns would not tell moves apart (all of them, with a delta
     /// prior far away).
-    fn roll_out(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) -> bool {
+    fn roll_out_count(&mut self, env: &mut LoopEnv<'_>, count: &mut Count) -> bool {
         let (belief, sensor) = (env.belief, env.sensor);
         let depth = count.t;
         self.walk.begin_rollout();
@@ -510,26 +466,13 @@ impl BeliefTree {
         }
         false
     }
-
-    /// Backpropagation: the return `g` to every node of the loop's path.
-    fn back_up(&mut self, g: f64) {
-        for &id in &self.path {
-            let n = &mut self.nodes[id as usize];
-            n.visits += 1;
-            n.sum += g;
-            n.lo = n.lo.min(g);
-            n.hi = n.hi.max(g);
-        }
-        self.cov.clear();
-        self.update_intent();
-    }
 }
 
 impl Stats for BeliefTree {
     const POSTERIOR_TARGETS: bool = true;
 
     /// Starts a decision at `root`, keeping the reused subtree when it is rooted there.
-    fn begin_decision(&mut self, root: u32, _reset: bool) {
+    fn begin_decision(&mut self, _torus: &Torus, root: u32, _reset: bool) {
         if self.nodes.first().map(|n| n.cell) != Some(root) {
             self.nodes.clear();
             self.nodes.push(Node::leaf(root));
@@ -619,29 +562,87 @@ impl Stats for BeliefTree {
         }
     }
 
-    /// One loop: descend by UCT and expand, roll out with the coverage
-    /// walk, backpropagate the return.
+    /// Selection: the loop starts (the decision's first also rescales
+    /// the kept returns and makes the reference), then descends by UCT.
     ///
     /// # Panics
     /// If called before [`Stats::begin_decision`].
-    fn iterate(&mut self, env: &mut LoopEnv<'_>, _root: u32) -> LoopReport {
+    fn select(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
         let mut count = self.begin_loop(env);
-        self.descend(env, &mut count);
-        let depth = count.t;
-        let cut = self.roll_out(env, &mut count);
-        let steps = count.t - depth;
-        if !count.exact && !cut {
+        self.descend(env, &mut count, rec);
+        self.count = count;
+    }
+
+    fn expand(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let mut count = self.count;
+        self.grow(env, &mut count, rec);
+        self.path_t = count.t;
+        self.count = count;
+    }
+
+    /// The rollout, along the plan or by the coverage walk.
+    fn roll_out(&mut self, env: &mut LoopEnv<'_>, _root: u32, rec: Option<&mut PhaseRecord>) {
+        let mut count = self.count;
+        let from = trace_len(env);
+        self.cut = self.roll_out_count(env, &mut count);
+        self.count = count;
+        if let Some(r) = rec {
+            note_rollout(
+                Some(&mut *r),
+                from,
+                count.t - self.path_t,
+                count.tau.is_some(),
+            );
+            r.cut = self.cut;
+            r.truncated = !self.cut && count.tau.is_none();
+        }
+    }
+
+    /// Backpropagation of the return: its sampled tail added unless the
+    /// rollout was cut (the reference charged it) or counted exactly.
+    fn back_up(
+        &mut self,
+        _env: &mut LoopEnv<'_>,
+        _root: u32,
+        rec: Option<&mut PhaseRecord>,
+    ) -> LoopReport {
+        let mut count = self.count;
+        let steps = count.t - self.path_t;
+        if !count.exact && !self.cut {
             // The sampled tail: 1{τ > H}·(τ − H), or what a truncated
             // rollout saw of it.
             count.g += (count.tau.unwrap_or(count.t).max(count.h) - count.h) as f64;
         }
-        self.back_up(count.g);
+        self.credit(count.g, rec);
         LoopReport {
             rollout_steps: steps,
             detected: count.tau.is_some(),
             reward: count.g,
             counts: true,
         }
+    }
+
+    fn tree(
+        &self,
+        _torus: &Torus,
+        _root: u32,
+        _c: f64,
+        q: &TreeQuery,
+    ) -> Result<TreeExport, TreeError> {
+        self.export(q)
+    }
+
+    fn heap_bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(&self.nodes[..])
+            + size_of_val(&self.path[..])
+            + size_of_val(&self.ref_r[..])
+            + size_of_val(&self.ref_tail[..])
+            + self.cov.heap_bytes()
+            + size_of_val(&self.intent[..])
+            + size_of_val(&self.plan[..])
+            + size_of_val(&self.cand[..])
+            + size_of_val(&self.line[..])
     }
 
     /// Re-roots the tree at the child reached by `m`, keeping its subtree;

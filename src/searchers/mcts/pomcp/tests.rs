@@ -306,7 +306,7 @@ fn the_kept_subtree_survives_a_real_move_rescaled() {
     let start = hand.game.start;
     let cells = hand.game.torus.cells();
     let mut tree = BeliefTree::new(cells, 1 << 12, ReturnScale::Range, 0.01, 10_000, 0);
-    tree.begin_decision(start, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), start, false);
     hand.run(&mut tree, start, 200);
     let m = Move::Right;
     let kid = tree.nodes[0].children[m as usize];
@@ -329,7 +329,7 @@ fn the_kept_subtree_survives_a_real_move_rescaled() {
     );
     let to = hand.game.torus.step(start, m);
     hand.belief.search_around(&hand.sensor, to);
-    tree.begin_decision(to, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), to, false);
     let g = hand.run(&mut tree, to, 1).reward;
     // One more loop, and every kept return mapped by G -> (G - 1)·M/M'
     // (the kept subtree walked in step with the old one, child by
@@ -384,7 +384,7 @@ fn a_decision_counts_its_own_selections_and_the_tree_stays_within_its_limit() {
         let view = tree.view(&torus, root, c);
         view.children.iter().map(|ch| ch.selected).sum()
     };
-    tree.begin_decision(start, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), start, false);
     hand.run(&mut tree, start, 10);
     assert_eq!(selected(&tree, start), 10);
     assert!(tree.nodes.len() < max as usize);
@@ -399,7 +399,7 @@ fn a_decision_counts_its_own_selections_and_the_tree_stays_within_its_limit() {
     tree.advance(m);
     let to = torus.step(start, m);
     hand.belief.search_around(&hand.sensor, to);
-    tree.begin_decision(to, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), to, false);
     hand.run(&mut tree, to, 5);
     assert_eq!(tree.nodes[0].visits, kept + 5);
     assert_eq!(selected(&tree, to), 5, "only this decision's loops");
@@ -424,7 +424,7 @@ fn a_rollout_stops_at_the_rollout_cap() {
         0,
     );
     for cap in [1, 7, 40] {
-        tree.begin_decision(start, false);
+        tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), start, false);
         for _ in 0..20 {
             let report = hand.run_capped(&mut tree, start, 1, cap);
             assert_eq!(report.rollout_steps, cap);
@@ -448,7 +448,7 @@ fn with_pomcp_exact_1_a_loop_returns_the_practice_targets_detection_time() {
         25,
         0,
     );
-    tree.begin_decision(start, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), start, false);
     let mut detected = 0;
     for cap in [10_000, 30] {
         for _ in 0..100 {
@@ -478,7 +478,7 @@ fn a_decision_checks_the_children_that_beat_the_best_so_far_and_takes_the_cheape
     let (mut checked, mut skipped, mut adopted) = (0, 0, 0);
     let (mut cov, mut line, mut out) = (Coverage::new(torus.cells()), Vec::new(), Vec::new());
     for _ in 0..8 {
-        tree.begin_decision(root, false);
+        tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), root, false);
         hand.run(&mut tree, root, 100);
         let (plan_cost, plan) = (tree.plan_cost, tree.plan[tree.plan_at..].to_vec());
         let on_plan = tree.plan_move(&torus, root).expect("the plan goes on");
@@ -577,7 +577,7 @@ fn the_real_move_is_the_child_through_which_the_best_return_was_found() {
     let mut hand = Hand::new(c, 9);
     let (start, cells) = (hand.game.start, hand.game.torus.cells());
     let mut tree = BeliefTree::new(cells, 1 << 12, ReturnScale::Best, 0.0, 30, 0);
-    tree.begin_decision(start, false);
+    tree.begin_decision(&crate::game::lattice::Torus::new(40).unwrap(), start, false);
     hand.run(&mut tree, start, 300);
     let view = tree.view(
         &hand.game.torus,
