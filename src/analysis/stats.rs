@@ -1,6 +1,10 @@
-//! Summaries over trials: means with t-based 95% confidence intervals, the
-//! paper's ASOO, ratios, quartiles.
+//! Summaries over trials: means with bootstrap intervals, medians with
+//! order-statistic intervals, the paper's ASOO, ratios, quartiles; and the
+//! t quantile and t-interval that tests and the bootstrap's tails use.
 
+use super::bootstrap::bca_mean;
+use super::interval::Interval;
+use super::median::median_interval;
 use crate::game::counters::Counters;
 use crate::run::episode::TrialResult;
 
@@ -38,7 +42,9 @@ pub fn t975(df: u64) -> f64 {
     }
 }
 
-/// Mean, standard deviation and 95% CI of a sample.
+/// Mean, standard deviation and t-based 95% CI of a sample: for tests
+/// and comparisons (outputs give [`Interval`]s, which suit capped,
+/// heavy-tailed trials).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct MeanCi {
     /// Sample size.
@@ -164,26 +170,26 @@ impl BoxStats {
 
 /// Everything reported over a batch of trials. It serialises flat, with
 /// the field names the CLI's `--json` and the page's batch panel use:
-/// `trials, mean_steps, ci95_steps, mean_optimal, ci95_optimal, asoo,
-/// ci95_asoo, mean_ratio, ci95_ratio, steps_over_mean_optimal, median_steps,
-/// q1_steps, q3_steps, zero_optimal, capped, rollouts, rollout_steps,
-/// truncated_rollouts` (a CI is `[lo, hi]`).
+/// `trials, mean_steps, mean_optimal, asoo, mean_ratio,
+/// steps_over_mean_optimal, median_steps, q1_steps, q3_steps, zero_optimal,
+/// capped, rollouts, rollout_steps, truncated_rollouts`, where the means and
+/// the median are intervals (`{estimate, lo, hi, level, method}`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     /// Trials run.
     pub trials: u64,
-    /// Steps per trial.
-    pub steps: MeanCi,
-    /// Optimal steps per trial.
-    pub optimal: MeanCi,
+    /// Mean steps per trial, with its bootstrap interval.
+    pub steps: Interval,
+    /// Mean optimal steps per trial.
+    pub optimal: Interval,
     /// ASOO as the authors' code computes it: the mean of (steps − optimal).
-    pub asoo: MeanCi,
+    pub asoo: Interval,
     /// Mean of steps/optimal over trials with optimal > 0.
-    pub ratio: MeanCi,
+    pub ratio: Interval,
     /// Mean steps / mean optimal.
     pub steps_over_mean_optimal: f64,
-    /// Median steps.
-    pub median_steps: f64,
+    /// Median steps, with its order-statistic interval.
+    pub median_steps: Interval,
     /// First quartile of steps.
     pub q1_steps: f64,
     /// Third quartile of steps.
@@ -197,12 +203,14 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Summarises `results`.
+    /// Summarises `results` (in trial order: the intervals' resampling is
+    /// seeded by the values in order).
     pub fn of(results: &[TrialResult]) -> Summary {
-        let steps = MeanCi::of(results.iter().map(|r| r.steps as f64));
-        let optimal = MeanCi::of(results.iter().map(|r| r.optimal as f64));
-        let asoo = MeanCi::of(results.iter().map(|r| r.steps as f64 - r.optimal as f64));
-        let ratio = MeanCi::of(results.iter().filter_map(TrialResult::ratio));
+        let of = |f: &dyn Fn(&TrialResult) -> Option<f64>| {
+            bca_mean(&results.iter().filter_map(f).collect::<Vec<_>>())
+        };
+        let steps = of(&|r| Some(r.steps as f64));
+        let optimal = of(&|r| Some(r.optimal as f64));
         let mut sorted: Vec<f64> = results.iter().map(|r| r.steps as f64).collect();
         sorted.sort_by(f64::total_cmp);
         let mut counters = Counters::default();
@@ -213,10 +221,10 @@ impl Summary {
             trials: results.len() as u64,
             steps,
             optimal,
-            asoo,
-            ratio,
-            steps_over_mean_optimal: steps.mean / optimal.mean,
-            median_steps: quantile(&sorted, 0.5),
+            asoo: of(&|r| Some(r.steps as f64 - r.optimal as f64)),
+            ratio: of(&TrialResult::ratio),
+            steps_over_mean_optimal: steps.estimate / optimal.estimate,
+            median_steps: median_interval(&sorted),
             q1_steps: quantile(&sorted, 0.25),
             q3_steps: quantile(&sorted, 0.75),
             zero_optimal: results.iter().filter(|r| r.optimal == 0).count() as u64,
@@ -231,16 +239,12 @@ impl serde::Serialize for Summary {
         #[derive(serde::Serialize)]
         struct Flat {
             trials: u64,
-            mean_steps: f64,
-            ci95_steps: [f64; 2],
-            mean_optimal: f64,
-            ci95_optimal: [f64; 2],
-            asoo: f64,
-            ci95_asoo: [f64; 2],
-            mean_ratio: f64,
-            ci95_ratio: [f64; 2],
+            mean_steps: Interval,
+            mean_optimal: Interval,
+            asoo: Interval,
+            mean_ratio: Interval,
             steps_over_mean_optimal: f64,
-            median_steps: f64,
+            median_steps: Interval,
             q1_steps: f64,
             q3_steps: f64,
             zero_optimal: u64,
@@ -249,17 +253,12 @@ impl serde::Serialize for Summary {
             rollout_steps: u64,
             truncated_rollouts: u64,
         }
-        let ci = |m: &MeanCi| [m.lo, m.hi];
         Flat {
             trials: self.trials,
-            mean_steps: self.steps.mean,
-            ci95_steps: ci(&self.steps),
-            mean_optimal: self.optimal.mean,
-            ci95_optimal: ci(&self.optimal),
-            asoo: self.asoo.mean,
-            ci95_asoo: ci(&self.asoo),
-            mean_ratio: self.ratio.mean,
-            ci95_ratio: ci(&self.ratio),
+            mean_steps: self.steps,
+            mean_optimal: self.optimal,
+            asoo: self.asoo,
+            mean_ratio: self.ratio,
             steps_over_mean_optimal: self.steps_over_mean_optimal,
             median_steps: self.median_steps,
             q1_steps: self.q1_steps,
@@ -362,14 +361,21 @@ mod tests {
         ];
         let s = Summary::of(&results);
         assert_eq!(s.trials, 4);
-        assert_eq!((s.steps.mean, s.optimal.mean), (25.0, 5.0));
+        assert_eq!((s.steps.estimate, s.optimal.estimate), (25.0, 5.0));
         // ASOO: the mean of steps − optimal (5, 20, 20, 35).
-        assert_eq!(s.asoo.mean, 20.0);
+        assert_eq!(s.asoo.estimate, 20.0);
+        assert_eq!(s.asoo, bca_mean(&[5.0, 20.0, 20.0, 35.0]));
         // The ratio leaves out the trial with optimal 0: (2 + 3 + 8) / 3.
-        assert_eq!((s.ratio.n, s.zero_optimal), (3, 1));
-        assert!((s.ratio.mean - 13.0 / 3.0).abs() < 1e-12);
+        assert_eq!(s.zero_optimal, 1);
+        assert_eq!(s.ratio, bca_mean(&[2.0, 3.0, 8.0]));
+        assert!((s.ratio.estimate - 13.0 / 3.0).abs() < 1e-12);
         assert_eq!(s.steps_over_mean_optimal, 5.0);
-        assert_eq!((s.q1_steps, s.median_steps, s.q3_steps), (17.5, 25.0, 32.5));
+        assert_eq!(
+            (s.q1_steps, s.median_steps.estimate, s.q3_steps),
+            (17.5, 25.0, 32.5)
+        );
+        // Intervals stay within the trials' range.
+        assert!(s.steps.lo >= 10.0 && s.steps.hi <= 40.0, "{:?}", s.steps);
         assert_eq!(s.capped, 1, "the one trial not found");
         assert_eq!(
             s.counters,
