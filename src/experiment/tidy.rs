@@ -14,9 +14,9 @@ pub const TRIALS_COLUMNS: [&str; 12] = [
     "excess", "value",
 ];
 
-/// The parameters whose value differs between the points of `plan`, a
-/// point's value being empty where the parameter does not apply to it, in
-/// schema order; with each point's value.
+/// The parameters that take more than one value among the points of
+/// `plan` they apply to, in schema order, with each point's value (empty
+/// where the parameter does not apply: `rollout` for a random walk).
 pub fn varying(plan: &Plan) -> Vec<(&'static str, Vec<String>)> {
     let shown = |e: ConfigParam, cfg: &config::Config| {
         if e.applies_to(cfg) {
@@ -30,9 +30,15 @@ pub fn varying(plan: &Plan) -> Vec<(&'static str, Vec<String>)> {
         .filter(|e| e.param().key != "seed")
         .filter_map(|&e| {
             let values: Vec<String> = plan.points.iter().map(|p| shown(e, &p.config)).collect();
-            values
+            let mut applying = plan
+                .points
                 .iter()
-                .any(|v| *v != values[0])
+                .zip(&values)
+                .filter(|(p, _)| e.applies_to(&p.config))
+                .map(|(_, v)| v);
+            let first = applying.next()?;
+            applying
+                .any(|v| v != first)
                 .then_some((e.param().key, values))
         })
         .collect()
