@@ -111,25 +111,24 @@ pub fn rw_hitting_law(
     let mut mass = vec![0.0f64; cells];
     mass[start as usize] = 1.0;
     let mut next = vec![0.0f64; cells];
-    for t in 1..cap as usize {
+    for p in law.iter_mut().take(cap as usize).skip(1) {
         next.iter_mut().for_each(|m| *m = 0.0);
         let mut hit = 0.0;
-        for c in 0..cells {
-            let m = mass[c] / 4.0;
+        for (c, &m) in mass.iter().enumerate() {
             if m == 0.0 {
                 continue;
             }
             for mv in crate::game::lattice::Move::ALL {
                 let nb = torus.step(c as u32, mv) as usize;
                 if det[nb] {
-                    hit += m;
+                    hit += m / 4.0;
                 } else {
-                    next[nb] += m;
+                    next[nb] += m / 4.0;
                 }
             }
         }
         std::mem::swap(&mut mass, &mut next);
-        law[t] = hit;
+        *p = hit;
     }
     // Undetected after cap − 1 steps: the trial reaches the cap.
     law[cap as usize] = mass.iter().sum();
