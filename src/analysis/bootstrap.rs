@@ -49,18 +49,40 @@ pub fn seed_of(xs: &[f64]) -> u64 {
     rng::splitmix64(h.finish())
 }
 
+/// A uniform index in `0..n` from 32 random bits (Lemire's method; on the
+/// rare rejection, with probability below n/2³², fresh bits are drawn).
+#[inline]
+fn index(bits: u32, n: u32, rng: &mut Rng) -> usize {
+    let mut m = bits as u64 * n as u64;
+    if (m as u32) < n {
+        let threshold = n.wrapping_neg() % n;
+        while (m as u32) < threshold {
+            m = (rng::bits(rng) >> 32) * n as u64;
+        }
+    }
+    (m >> 32) as usize
+}
+
 /// The sorted means of [`RESAMPLES`] resamples of `xs` with replacement
-/// (`xs` must not be empty), drawn from `rng`.
+/// (`xs` must not be empty), drawn from `rng`: two indices from each 64
+/// random bits, the low half first.
 pub fn resampled_means(xs: &[f64], rng: &mut Rng) -> Vec<f64> {
     let n = xs.len();
     let n32 = u32::try_from(n).expect("at most 2^32 trials per interval");
     let mut means: Vec<f64> = (0..RESAMPLES)
         .map(|_| {
-            let mut s = 0.0;
-            for _ in 0..n {
-                s += xs[rng::below(rng, n32) as usize];
+            // Two sums, added in a fixed order: the same bits everywhere,
+            // without one long chain of dependent additions.
+            let (mut s0, mut s1) = (0.0f64, 0.0f64);
+            for _ in 0..n / 2 {
+                let w = rng::bits(rng);
+                s0 += xs[index(w as u32, n32, rng)];
+                s1 += xs[index((w >> 32) as u32, n32, rng)];
             }
-            s / n as f64
+            if n % 2 == 1 {
+                s0 += xs[index(rng::bits(rng) as u32, n32, rng)];
+            }
+            (s0 + s1) / n as f64
         })
         .collect();
     means.sort_by(f64::total_cmp);
