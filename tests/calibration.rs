@@ -112,7 +112,7 @@ fn study(law: &[f64], n: usize) -> ([Misses; 4], u64) {
         );
         misses[0].add((ours.lo, ours.hi), mean);
         let m = xs.iter().sum::<f64>() / n as f64;
-        let boot = resampled_means(&xs, &mut rng::Rng::seed_from_u64(seed_of(&xs)));
+        let boot = resampled_means(&[&xs], &mut rng::Rng::seed_from_u64(seed_of(&[&xs]))).remove(0);
         misses[1].add(bca_ends(&xs, m, &boot, (-z, z)), mean);
         misses[2].add((quantile(&boot, 0.025), quantile(&boot, 0.975)), mean);
         let t = MeanCi::of(xs.iter().copied());

@@ -2,7 +2,7 @@
 //! merge, reading results back, statistics on known data.
 #![cfg(not(target_arch = "wasm32"))]
 
-use torus_search::analysis::bootstrap::bca_mean;
+use torus_search::analysis::bootstrap::bca_means;
 use torus_search::experiment::{
     merge, read, run_units, Plan, ResultSet, Row, Shard, Spec, ROW_FIELDS,
 };
@@ -272,7 +272,9 @@ fn statistics_on_known_data_keep_the_capped_trial() {
     assert!((s.sd - sd).abs() < 1e-12);
     // The mean's interval is the bootstrap of the values in trial order,
     // within their range; the median's needs six trials.
-    assert_eq!(s.mean, bca_mean(&[2.0, 3.0, 3.0, 5.0, 10.0]));
+    let steps = [2.0, 3.0, 3.0, 5.0, 10.0];
+    let excess = [1.0, 2.0, 2.0, 4.0, 9.0];
+    assert_eq!(s.mean, bca_means(&[&steps, &excess])[0]);
     assert!(2.0 <= s.mean.lo && s.mean.hi <= 10.0, "{:?}", s.mean);
     assert_eq!(s.median.estimate, 3.0);
     assert!(s.median.lo.is_nan());
@@ -286,7 +288,7 @@ fn statistics_on_known_data_keep_the_capped_trial() {
     assert_eq!(s.mean_optimal, Some(1.0));
     let excess = s.excess_mean.unwrap();
     assert!((excess.estimate - 3.6).abs() < 1e-12);
-    assert_eq!(excess, bca_mean(&[1.0, 2.0, 2.0, 4.0, 9.0]));
+    assert_eq!(excess, bca_means(&[&steps, &[1.0, 2.0, 2.0, 4.0, 9.0]])[1]);
     // A capped row must sit at the cap; a row cannot exceed it.
     let bad = |steps, found| {
         let p = plan(

@@ -38,20 +38,23 @@ use rand::SeedableRng;
 /// Tibshirani advise 1000 or more for percentile ends).
 pub const RESAMPLES: usize = 2000;
 
-/// The seed of the resampling stream of `xs`: FNV-1a of its length and
-/// values' bits, mixed.
-pub fn seed_of(xs: &[f64]) -> u64 {
+/// The seed of the resampling stream of `columns`: FNV-1a of their length
+/// and their values' bits, column by column, mixed.
+pub fn seed_of(columns: &[&[f64]]) -> u64 {
     let mut h = Fnv::default();
-    h.word(xs.len() as u64);
-    for x in xs {
-        h.word(x.to_bits());
+    h.word(columns.first().map_or(0, |c| c.len()) as u64);
+    for xs in columns {
+        for x in xs.iter() {
+            h.word(x.to_bits());
+        }
     }
     rng::splitmix64(h.finish())
 }
 
 /// A uniform index in `0..n` from 32 random bits (Lemire's method; on the
 /// rare rejection, with probability below n/2³², fresh bits are drawn).
-#[inline]
+/// Inline, with no call, so that a caller's sums stay in registers.
+#[inline(always)]
 fn index(bits: u32, n: u32, rng: &mut Rng) -> usize {
     let mut m = bits as u64 * n as u64;
     if (m as u32) < n {
@@ -63,29 +66,76 @@ fn index(bits: u32, n: u32, rng: &mut Rng) -> usize {
     (m >> 32) as usize
 }
 
-/// The sorted means of [`RESAMPLES`] resamples of `xs` with replacement
-/// (`xs` must not be empty), drawn from `rng`: two indices from each 64
-/// random bits, the low half first.
-pub fn resampled_means(xs: &[f64], rng: &mut Rng) -> Vec<f64> {
-    let n = xs.len();
+/// The sum of one resample of `xs` (n = `xs.len()` draws): two sums, of
+/// the even and the odd draws, added at the end in a fixed order, so the
+/// bits are the same everywhere and the additions do not form one long
+/// chain. A function of its own so that the sums stay in registers.
+#[inline(never)]
+fn sums(xs: &[f64], n32: u32, rng: &mut Rng) -> f64 {
+    let (mut s0, mut s1) = (0.0f64, 0.0f64);
+    for _ in 0..xs.len() / 2 {
+        let w = rng::bits(rng);
+        s0 += xs[index(w as u32, n32, rng)];
+        s1 += xs[index((w >> 32) as u32, n32, rng)];
+    }
+    if xs.len() % 2 == 1 {
+        s0 += xs[index(rng::bits(rng) as u32, n32, rng)];
+    }
+    s0 + s1
+}
+
+/// [`sums`] of two columns over the same draws.
+#[inline(never)]
+fn sums_of_two(a: &[f64], b: &[f64], n32: u32, rng: &mut Rng) -> (f64, f64) {
+    let (mut a0, mut a1, mut b0, mut b1) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for _ in 0..a.len() / 2 {
+        let w = rng::bits(rng);
+        let (i, j) = (index(w as u32, n32, rng), index((w >> 32) as u32, n32, rng));
+        a0 += a[i];
+        a1 += a[j];
+        b0 += b[i];
+        b1 += b[j];
+    }
+    if a.len() % 2 == 1 {
+        let i = index(rng::bits(rng) as u32, n32, rng);
+        a0 += a[i];
+        b0 += b[i];
+    }
+    (a0 + a1, b0 + b1)
+}
+
+/// For each of `columns` (one or two, equally long, not empty), the sorted
+/// means of the same [`RESAMPLES`] resamples of the trials with
+/// replacement, drawn from `rng`: two trial indices from each 64 random
+/// bits, the low half first.
+///
+/// # Panics
+/// With no columns or more than two (a caller bug).
+pub fn resampled_means(columns: &[&[f64]], rng: &mut Rng) -> Vec<Vec<f64>> {
+    let (a, b) = match *columns {
+        [a] => (a, None),
+        [a, b] => (a, Some(b)),
+        _ => panic!(
+            "a bootstrap resamples one or two columns, got {}",
+            columns.len()
+        ),
+    };
+    let n = a.len();
     let n32 = u32::try_from(n).expect("at most 2^32 trials per interval");
-    let mut means: Vec<f64> = (0..RESAMPLES)
-        .map(|_| {
-            // Two sums, added in a fixed order: the same bits everywhere,
-            // without one long chain of dependent additions.
-            let (mut s0, mut s1) = (0.0f64, 0.0f64);
-            for _ in 0..n / 2 {
-                let w = rng::bits(rng);
-                s0 += xs[index(w as u32, n32, rng)];
-                s1 += xs[index((w >> 32) as u32, n32, rng)];
-            }
-            if n % 2 == 1 {
-                s0 += xs[index(rng::bits(rng) as u32, n32, rng)];
-            }
-            (s0 + s1) / n as f64
-        })
-        .collect();
-    means.sort_by(f64::total_cmp);
+    let mut means = vec![Vec::with_capacity(RESAMPLES); columns.len()];
+    for _ in 0..RESAMPLES {
+        let (sa, sb) = match b {
+            None => (sums(a, n32, rng), 0.0),
+            Some(b) => sums_of_two(a, b, n32, rng),
+        };
+        means[0].push(sa / n as f64);
+        if b.is_some() {
+            means[1].push(sb / n as f64);
+        }
+    }
+    for m in &mut means {
+        m.sort_by(f64::total_cmp);
+    }
     means
 }
 
@@ -100,35 +150,59 @@ pub fn expanded_z(n: usize) -> f64 {
 /// `[min, max]` of `xs`; both are NaN with fewer than two values, and both
 /// equal the mean when every value is the same.
 pub fn bca_mean(xs: &[f64]) -> Interval {
-    let n = xs.len();
-    let mean = xs.iter().sum::<f64>() / n as f64;
-    let (min, max) = xs
+    bca_means(&[xs])[0]
+}
+
+/// [`bca_mean`] of each of `columns` (one or two, values of the same
+/// trials, equally long), from one set of resamples of the trials: a
+/// point's steps and excess cost one stream of draws, not two.
+///
+/// # Panics
+/// When the columns differ in length, or there are more than two (a
+/// caller bug).
+pub fn bca_means(columns: &[&[f64]]) -> Vec<Interval> {
+    let n = columns.first().map_or(0, |c| c.len());
+    assert!(
+        columns.iter().all(|c| c.len() == n),
+        "columns of one bootstrap must be equally long"
+    );
+    let means: Vec<f64> = columns
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
+        .map(|xs| xs.iter().sum::<f64>() / n as f64)
+        .collect();
     if n < 2 {
-        return Interval::bare(mean, IntervalMethod::Bootstrap);
+        return means
+            .iter()
+            .map(|&m| Interval::bare(m, IntervalMethod::Bootstrap))
+            .collect();
     }
-    if min == max {
-        return Interval {
-            estimate: mean,
-            lo: mean,
-            hi: mean,
-            level: LEVEL,
-            method: IntervalMethod::Bootstrap,
-        };
-    }
-    let means = resampled_means(xs, &mut Rng::seed_from_u64(seed_of(xs)));
+    let boot = resampled_means(columns, &mut Rng::seed_from_u64(seed_of(columns)));
     let z = expanded_z(n);
-    let (lo, hi) = bca_ends(xs, mean, &means, (-z, z));
-    Interval {
-        estimate: mean,
-        lo: lo.clamp(min, max),
-        hi: hi.clamp(min, max),
-        level: LEVEL,
-        method: IntervalMethod::Bootstrap,
-    }
+    columns
+        .iter()
+        .zip(means)
+        .zip(&boot)
+        .map(|((xs, mean), boot)| {
+            let (min, max) = xs
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            // Every value the same: the bootstrap's law is a point.
+            let (lo, hi) = if min == max {
+                (mean, mean)
+            } else {
+                bca_ends(xs, mean, boot, (-z, z))
+            };
+            Interval {
+                estimate: mean,
+                lo: lo.clamp(min, max),
+                hi: hi.clamp(min, max),
+                level: LEVEL,
+                method: IntervalMethod::Bootstrap,
+            }
+        })
+        .collect()
 }
 
 /// The BCa ends from the sorted resampled means, with `zs` in place of the
@@ -203,7 +277,7 @@ mod tests {
         // The stream is the values': other values, another stream.
         let mut ys = xs.clone();
         ys.swap(0, 1);
-        assert_ne!(seed_of(&xs), seed_of(&ys));
+        assert_ne!(seed_of(&[&xs]), seed_of(&[&ys]));
         assert_ne!(bca_mean(&xs).lo, bca_mean(&ys).lo);
         // tests/determinism.rs pins the bits natively and in wasm.
     }
@@ -219,6 +293,20 @@ mod tests {
         // Two values: the expanded tails reach both ends.
         let two = bca_mean(&[0.0, 10.0]);
         assert_eq!((two.lo, two.hi), (0.0, 10.0));
+    }
+
+    #[test]
+    fn columns_share_resamples_but_not_results() {
+        // Steps and steps − optimal of the same trials: one stream of
+        // resamples, each column its own interval.
+        let steps = skewed();
+        let excess: Vec<f64> = steps.iter().map(|s| s - 29.0).collect();
+        let both = bca_means(&[&steps, &excess]);
+        assert_eq!(both[0].estimate, bca_mean(&steps).estimate);
+        // Shifting every value shifts the shared resamples' means alike.
+        assert!((both[1].lo - (both[0].lo - 29.0)).abs() < 1e-9, "{both:?}");
+        assert!((both[1].hi - (both[0].hi - 29.0)).abs() < 1e-9, "{both:?}");
+        assert!(both[1].lo >= 0.0);
     }
 
     #[test]

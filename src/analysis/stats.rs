@@ -2,7 +2,7 @@
 //! order-statistic intervals, the paper's ASOO, ratios, quartiles; and the
 //! t quantile and t-interval that tests and the bootstrap's tails use.
 
-use super::bootstrap::bca_mean;
+use super::bootstrap::{bca_mean, bca_means};
 use super::interval::Interval;
 use super::median::median_interval;
 use crate::game::counters::Counters;
@@ -206,11 +206,16 @@ impl Summary {
     /// Summarises `results` (in trial order: the intervals' resampling is
     /// seeded by the values in order).
     pub fn of(results: &[TrialResult]) -> Summary {
-        let of = |f: &dyn Fn(&TrialResult) -> Option<f64>| {
-            bca_mean(&results.iter().filter_map(f).collect::<Vec<_>>())
+        let column = |f: &dyn Fn(&TrialResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
+        // Steps and steps − optimal from the same resamples.
+        let [steps, asoo] = bca_means(&[
+            &column(&|r| r.steps as f64),
+            &column(&|r| r.steps as f64 - r.optimal as f64),
+        ])[..] else {
+            unreachable!("two columns give two intervals")
         };
-        let steps = of(&|r| Some(r.steps as f64));
-        let optimal = of(&|r| Some(r.optimal as f64));
+        let optimal = bca_mean(&column(&|r| r.optimal as f64));
+        let ratios: Vec<f64> = results.iter().filter_map(TrialResult::ratio).collect();
         let mut sorted: Vec<f64> = results.iter().map(|r| r.steps as f64).collect();
         sorted.sort_by(f64::total_cmp);
         let mut counters = Counters::default();
@@ -221,8 +226,8 @@ impl Summary {
             trials: results.len() as u64,
             steps,
             optimal,
-            asoo: of(&|r| Some(r.steps as f64 - r.optimal as f64)),
-            ratio: of(&TrialResult::ratio),
+            asoo,
+            ratio: bca_mean(&ratios),
             steps_over_mean_optimal: steps.estimate / optimal.estimate,
             median_steps: median_interval(&sorted),
             q1_steps: quantile(&sorted, 0.25),
@@ -364,7 +369,9 @@ mod tests {
         assert_eq!((s.steps.estimate, s.optimal.estimate), (25.0, 5.0));
         // ASOO: the mean of steps − optimal (5, 20, 20, 35).
         assert_eq!(s.asoo.estimate, 20.0);
-        assert_eq!(s.asoo, bca_mean(&[5.0, 20.0, 20.0, 35.0]));
+        let joint = bca_means(&[&[10.0, 20.0, 30.0, 40.0], &[5.0, 20.0, 20.0, 35.0]]);
+        assert_eq!((s.steps, s.asoo), (joint[0], joint[1]));
+        assert_eq!(s.optimal, bca_mean(&[5.0, 0.0, 10.0, 5.0]));
         // The ratio leaves out the trial with optimal 0: (2 + 3 + 8) / 3.
         assert_eq!(s.zero_optimal, 1);
         assert_eq!(s.ratio, bca_mean(&[2.0, 3.0, 8.0]));

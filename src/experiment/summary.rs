@@ -6,7 +6,7 @@
 use super::defs::{Kind, Metric};
 use super::plan::{Plan, Point};
 use super::run::{game_of, Row};
-use crate::analysis::bootstrap::bca_mean;
+use crate::analysis::bootstrap::{bca_mean, bca_means};
 use crate::analysis::interval::Interval;
 use crate::analysis::median::median_interval;
 use crate::analysis::stats::{BoxStats, MeanCi};
@@ -153,17 +153,24 @@ pub fn point_stats(
         }
         h
     });
+    // Episodes: the metric and the excess from the same resamples.
+    let (mean, excess_mean) = if episodes {
+        let both = bca_means(&[&values, &excess]);
+        (both[0], Some(both[1]))
+    } else {
+        (bca_mean(&values), None)
+    };
     PointStats {
         lower_bound,
         n: values.len() as u64,
-        mean: bca_mean(&values),
+        mean,
         sd: MeanCi::of(values.iter().copied()).sd,
         median: median_interval(&sorted),
         spread: BoxStats::of_sorted(&sorted),
         capped: rows.iter().filter(|r| !r.found).count() as u64,
         found: rows.iter().filter(|r| r.found).count() as u64,
         mean_optimal: episodes.then(|| MeanCi::of(rows.iter().map(|r| r.optimal as f64)).mean),
-        excess_mean: episodes.then(|| bca_mean(&excess)),
+        excess_mean,
         histogram,
     }
 }
