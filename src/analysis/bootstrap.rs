@@ -17,9 +17,9 @@
 //! bootstrap"): a bootstrap's spread is the plug-in one, `(n − 1)/n` of the
 //! sample variance, and its quantiles are normal where a studentised mean's
 //! are Student's. So the normal quantile ±1.96 of the BCa formula is replaced
-//! by `±√(n/(n−1)) · t₀.₉₇₅(n − 1)`. It matters below a few dozen trials (on
-//! the calibration law at n = 10 it lifts the coverage from 0.908 to 0.947)
-//! and vanishes as n grows. EXPERIMENTS.md gives the calibration.
+//! by `±√(n/(n−1)) · t₀.₉₇₅(n − 1)`. It matters below a few dozen trials
+//! and vanishes as n grows; EXPERIMENTS.md ("Intervals and paired
+//! comparisons") gives the calibration.
 //!
 //! Determinism: the resampling stream is seeded by a hash of the values in
 //! the order given (trial order), so the same trials give the same bits on

@@ -339,7 +339,7 @@ export class ExperimentsView {
     const body = $('exp-table').tBodies[0];
     const rows = data.points.map((p) => {
       const tr = document.createElement('tr');
-      for (const v of [p.series, p.x, String(p.n), interval(p.mean), `${interval(p.median)} (${num(p.q1)}–${num(p.q3)})`, String(p.capped), num(p.lower_bound, 2)]) {
+      for (const v of [p.series, p.x, String(p.n), interval(p.mean), interval(p.median), String(p.capped), num(p.lower_bound, 2)]) {
         tr.insertCell().textContent = v;
       }
       const b = document.createElement('button');
