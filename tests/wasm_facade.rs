@@ -414,11 +414,22 @@ fn experiments_run_split_and_match_the_core() {
         .unwrap();
     let p = Plan::from_spec_text(spec).unwrap();
     let core_rows = core::run_units(&p, 0, 6).unwrap();
-    assert_eq!(text, ResultSet::new(p, 0, 6, core_rows).unwrap().to_json());
+    let core = ResultSet::new(p, 0, 6, core_rows).unwrap();
+    assert_eq!(text, core.to_json());
     let csv = facade::experiment_csv(&text)
         .map_err(JsValue::from)
         .unwrap();
     assert_eq!(csv.lines().count(), 3);
+    // The per-trial and paired CSVs are the core's, from the result text.
+    let trials = facade::experiment_trials_csv(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!((trials.lines().count(), &trials), (7, &core.trials_csv()));
+    let paired = facade::experiment_paired_csv(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(paired, core.paired_csv());
+    assert!(facade::experiment_trials_csv("{").is_err());
     let read = facade::experiment_read(&text)
         .map_err(JsValue::from)
         .unwrap();
