@@ -28,7 +28,7 @@
 
 use super::interval::{Interval, IntervalMethod, LEVEL};
 use super::normal;
-use super::stats::{quantile, t975};
+use super::quantiles::{quantile, t975};
 use crate::game::fnv::Fnv;
 use crate::game::rng::{self, Rng};
 use rand::SeedableRng;

@@ -9,7 +9,7 @@
 //! it never leaves the data's range.
 
 use super::interval::{Interval, IntervalMethod, LEVEL};
-use super::stats::quantile;
+use super::quantiles::quantile;
 
 /// The rank `k` (1-based) of the lower end of the order-statistic interval
 /// of `n` trials, the largest with `P(Bin(n, ½) ≤ k − 1) ≤ (1 − level)/2`;
