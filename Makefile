@@ -138,6 +138,8 @@ bench: setup
 	@scripts/build.sh
 	$(call section,wasm vs native rollouts in Node.js (benches/wasm-node.mjs))
 	node benches/wasm-node.mjs
+	$(call section,an experiment point's statistics in wasm (benches/intervals.mjs))
+	node benches/intervals.mjs
 	$(call section,cost per move of every searcher: wasm vs native (benches/moves.mjs))
 	node benches/moves.mjs
 	$(call section,teaching: seeking and a 10^5-node tree in wasm (benches/teach-node.mjs))

@@ -1,11 +1,13 @@
 //! Criterion benchmarks (stable Rust): rollout throughput per policy, MCTS
-//! loops and whole episodes at the paper's N = 40, L = 100.
+//! loops and whole episodes at the paper's N = 40, L = 100, and the
+//! bootstrap interval every experiment point reports.
 //!
 //! `cargo bench` runs them; `torus-search bench` prints the same figures
 //! without criterion's statistics.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
+use torus_search::analysis::bootstrap::bca_mean;
 use torus_search::bench::{mcts_loops, rollout_steps};
 use torus_search::config::Config;
 use torus_search::run::episode::Episode;
@@ -72,5 +74,20 @@ fn mcts(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, rollouts, mcts);
+fn intervals(c: &mut Criterion) {
+    // One bootstrap interval of the mean (2000 resamples): what an
+    // experiment's point costs per interval, natively.
+    let mut g = c.benchmark_group("intervals");
+    for n in [100u64, 1000] {
+        let xs: Vec<f64> = (0..n)
+            .map(|i| ((i * 7919) % 997 + if i % 50 == 3 { 5000 } else { 0 }) as f64)
+            .collect();
+        g.bench_function(BenchmarkId::new("bca_mean", n), |b| {
+            b.iter(|| black_box(bca_mean(black_box(&xs))))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, rollouts, mcts, intervals);
 criterion_main!(benches);

@@ -3,7 +3,7 @@
 # capped in TRIALS trials at step cap 20·N², at N = 40, r_v = 1, start
 # (1,1), default loops, for a delta target, Gaussian σ = 2.5, 5, 10 and a
 # uniform target. Prints one line per searcher/variant and prior: mean steps
-# with its 95% CI, capped episodes and the lower bound, and exits 1 if any
+# with its 95% interval, capped episodes and the lower bound, and exits 1 if any
 # episode was capped. The paper presets (--preset paper-text, paper-code)
 # are excepted: they keep the paper's table, which can trap (README).
 #
@@ -33,7 +33,7 @@ PRIORS=("--sigma 0" "--sigma 2.5" "--sigma 5" "--sigma 10" "--prior uniform")
 cargo build --release --quiet
 BIN=target/release/torus-search
 failed=0
-printf '%-6s %-16s %10s %22s %7s %8s\n' searcher prior mean "95% CI" capped bound
+printf '%-6s %-16s %10s %22s %7s %8s\n' searcher prior mean "95% interval" capped bound
 for s in "${ORDER[@]}"; do
   args=${SEARCHER[$s]:?"unknown searcher label $s (one of ${!SEARCHER[*]})"}
   for p in "${PRIORS[@]}"; do
@@ -42,8 +42,8 @@ for s in "${ORDER[@]}"; do
       --step-cap $CAP --json | python3 -c '
 import json, sys
 d = json.load(sys.stdin)
-lo, hi = d["ci95_steps"]
-print("%10.1f [%9.1f, %9.1f] %7d %8.1f" % (d["mean_steps"], lo, hi, d["capped"], d["lower_bound"]))')
+m = d["mean_steps"]
+print("%10.1f [%9.1f, %9.1f] %7d %8.1f" % (m["estimate"], m["lo"], m["hi"], d["capped"], d["lower_bound"]))')
     capped=$(echo "$line" | awk '{print $(NF-1)}')
     printf '%-6s %-16s %s\n' "$s" "$p" "$line"
     if [ "$capped" != 0 ]; then failed=1; fi

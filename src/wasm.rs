@@ -448,13 +448,26 @@ pub fn experiment_csv(result: &str) -> Result<String, JsError> {
     Ok(experiment::read(result).map_err(err)?.csv())
 }
 
+/// The per-trial CSV of a result JSON text (the CLI's `<name>.trials.csv`).
+#[wasm_bindgen(js_name = experimentTrialsCsv)]
+pub fn experiment_trials_csv(result: &str) -> Result<String, JsError> {
+    Ok(experiment::read(result).map_err(err)?.trials_csv())
+}
+
+/// The paired comparisons' CSV of a result JSON text (the CLI's
+/// `<name>.paired.csv`).
+#[wasm_bindgen(js_name = experimentPairedCsv)]
+pub fn experiment_paired_csv(result: &str) -> Result<String, JsError> {
+    Ok(experiment::read(result).map_err(err)?.paired_csv())
+}
+
 /// Reads and checks a result JSON text (the page's or the CLI's) and returns
 /// it as an object; a foreign or damaged file is an error saying what is wrong.
 #[wasm_bindgen(js_name = experimentRead)]
 pub fn experiment_read(text: &str) -> Result<JsValue, JsError> {
-    let set = experiment::read(text).map_err(err)?;
+    let (_, json) = experiment::read_with_json(text).map_err(err)?;
     let value: serde_json::Value =
-        serde_json::from_str(&set.to_json()).map_err(|e| JsError::new(&e.to_string()))?;
+        serde_json::from_str(&json).map_err(|e| JsError::new(&e.to_string()))?;
     to_js(&value)
 }
 

@@ -214,9 +214,13 @@ fn blind_paths_of_a_planner_give_its_exact_mean() {
     let exact = json(&[&base[..], &["--exact"]].concat());
     let blind = json(&[&base[..], &["--blind", "--trials", "3"]].concat());
     let want = exact["exact"]["mean"].as_f64().unwrap();
-    assert_eq!(blind["blind_mean"]["n"], 3);
-    assert_eq!(blind["blind_mean"]["mean"].as_f64().unwrap(), want);
-    assert_eq!(blind["blind_mean"]["sd"].as_f64().unwrap(), 0.0);
+    assert_eq!(blind["trials"], 3);
+    // Every trial's path is the same: a point interval at the exact mean.
+    for end in ["estimate", "lo", "hi"] {
+        assert_eq!(blind["blind_mean"][end].as_f64().unwrap(), want, "{end}");
+    }
+    assert_eq!(blind["blind_mean"]["method"], "expanded-bca-bootstrap");
+    assert_eq!(blind["sd"].as_f64().unwrap(), 0.0);
     assert!(blind["lower_bound"].as_f64().unwrap() <= want);
     let o = cli(&["run", "--blind", "--exact"]);
     assert_eq!(o.status.code(), Some(2));
@@ -231,12 +235,9 @@ fn json_has_every_field_and_is_consistent() {
     for f in [
         "trials",
         "mean_steps",
-        "ci95_steps",
         "mean_optimal",
         "asoo",
-        "ci95_asoo",
         "mean_ratio",
-        "ci95_ratio",
         "steps_over_mean_optimal",
         "median_steps",
         "q1_steps",
@@ -257,19 +258,40 @@ fn json_has_every_field_and_is_consistent() {
     assert_eq!(v["trials"], 40);
     assert_eq!(v["seed"], 3);
     assert_eq!(v["config"]["n"], 12);
-    let (ms, mo, asoo) = (
-        v["mean_steps"].as_f64().unwrap(),
-        v["mean_optimal"].as_f64().unwrap(),
-        v["asoo"].as_f64().unwrap(),
-    );
+    // Every interval has one shape: estimate, ends, level, method.
+    for (f, method) in [
+        ("mean_steps", "expanded-bca-bootstrap"),
+        ("mean_optimal", "expanded-bca-bootstrap"),
+        ("asoo", "expanded-bca-bootstrap"),
+        ("mean_ratio", "expanded-bca-bootstrap"),
+        ("median_steps", "order-statistic"),
+    ] {
+        let i = v[f]
+            .as_object()
+            .unwrap_or_else(|| panic!("{f} is not an interval: {v}"));
+        let mut keys: Vec<&str> = i.keys().map(String::as_str).collect();
+        keys.sort_unstable();
+        assert_eq!(keys, ["estimate", "hi", "level", "lo", "method"], "{f}");
+        assert_eq!(
+            (&i["level"], &i["method"]),
+            (&0.95.into(), &method.into()),
+            "{f}"
+        );
+        let (e, lo, hi) = (
+            i["estimate"].as_f64().unwrap(),
+            i["lo"].as_f64().unwrap(),
+            i["hi"].as_f64().unwrap(),
+        );
+        assert!(lo <= e && e <= hi, "{f}: {i:?}");
+    }
+    let est = |k: &str| v[k]["estimate"].as_f64().unwrap();
+    let (ms, mo, asoo) = (est("mean_steps"), est("mean_optimal"), est("asoo"));
     assert!(
         (ms - mo - asoo).abs() < 1e-9,
         "ASOO is mean(steps - optimal)"
     );
-    let ci = v["ci95_steps"].as_array().unwrap();
-    assert!(ci[0].as_f64().unwrap() <= ms && ms <= ci[1].as_f64().unwrap());
     let q = |k: &str| v[k].as_f64().unwrap();
-    assert!(q("q1_steps") <= q("median_steps") && q("median_steps") <= q("q3_steps"));
+    assert!(q("q1_steps") <= est("median_steps") && est("median_steps") <= q("q3_steps"));
     assert!((q("mean_over_bound") - ms / q("lower_bound")).abs() < 1e-12);
 }
 
@@ -329,14 +351,14 @@ fn fixed_and_known_targets() {
     let v = json(&[
         "run", "--n", "9", "--target", "2,1", "--trials", "5", "--json",
     ]);
-    assert_eq!(v["mean_steps"], 0.0);
+    assert_eq!(v["mean_steps"]["estimate"], 0.0);
     assert_eq!(v["zero_optimal"], 5);
     // With --known the searcher plans on the true target: near-optimal paths.
     let v = json(&[
         "run", "--n", "9", "--prior", "uniform", "--known", "--loops", "200", "--trials", "30",
         "--json",
     ]);
-    assert!(v["asoo"].as_f64().unwrap() < 3.0, "{v}");
+    assert!(v["asoo"]["estimate"].as_f64().unwrap() < 3.0, "{v}");
 }
 
 #[test]
@@ -531,7 +553,7 @@ fn shards_merge_into_the_single_run_files() {
         "--out",
         &format!("{d}/merged"),
     ]);
-    for ext in ["json", "csv", "svg"] {
+    for ext in ["json", "csv", "trials.csv", "paired.csv", "svg"] {
         assert_eq!(
             std::fs::read(dir.join(format!("merged/custom.{ext}"))).unwrap(),
             std::fs::read(dir.join(format!("single/custom.{ext}"))).unwrap(),

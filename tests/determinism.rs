@@ -337,3 +337,45 @@ fn loop_windows_replay_the_page_episode() {
     assert_eq!((bench.moves, bench.episodes), (moves, ended));
     assert!(moves > 10, "{moves} moves");
 }
+
+/// The intervals every result reports are a pure function of the values:
+/// pinned bits, checked natively and in wasm (the page's results must be
+/// the CLI's byte for byte).
+#[wasm_bindgen_test(unsupported = test)]
+fn intervals_are_pinned() {
+    use torus_search::analysis::bootstrap::bca_mean;
+    use torus_search::analysis::median::median_interval;
+    use torus_search::analysis::normal;
+    let b = bca_mean(&[3.0, 1.0, 4.0, 1.0, 5.0, 9.0, 2.0, 6.0, 5.0, 3.0]);
+    assert_eq!(b.estimate, 3.9);
+    assert_eq!(
+        (b.lo.to_bits(), b.hi.to_bits()),
+        (PIN_LO_10, PIN_HI_10),
+        "{b:?}"
+    );
+    // 200 skewed trials with three at a cap of 5000.
+    let xs: Vec<f64> = (0..200u64)
+        .map(|i| match i % 67 {
+            13 => 5000.0,
+            k => (40 + (k * k * 7 + i) % 400) as f64,
+        })
+        .collect();
+    let b = bca_mean(&xs);
+    assert_eq!(
+        (b.lo.to_bits(), b.hi.to_bits()),
+        (PIN_LO_200, PIN_HI_200),
+        "{b:?}"
+    );
+    let mut sorted = xs.clone();
+    sorted.sort_by(f64::total_cmp);
+    let m = median_interval(&sorted);
+    assert_eq!((m.lo, m.estimate, m.hi), (PIN_MED.0, PIN_MED.1, PIN_MED.2));
+    assert_eq!(normal::quantile(0.975).to_bits(), PIN_Z975);
+}
+
+const PIN_LO_10: u64 = 4612811918334230528;
+const PIN_HI_10: u64 = 4618761310118564096;
+const PIN_LO_200: u64 = 4642603825677868583;
+const PIN_HI_200: u64 = 4646163961901569658;
+const PIN_MED: (f64, f64, f64) = (182.0, 216.0, 233.0);
+const PIN_Z975: u64 = 4611505712243081091;

@@ -2,6 +2,7 @@
 //! merge, reading results back, statistics on known data.
 #![cfg(not(target_arch = "wasm32"))]
 
+use torus_search::analysis::bootstrap::bca_means;
 use torus_search::experiment::{
     merge, read, run_units, Plan, ResultSet, Row, Shard, Spec, ROW_FIELDS,
 };
@@ -76,7 +77,7 @@ fn results_read_back_and_hold_what_they_claim() {
     assert_eq!(set.to_json(), single);
     let v: serde_json::Value = serde_json::from_str(&single).unwrap();
     assert_eq!(v["format"], "torus-search-experiment");
-    assert_eq!(v["format_version"], 1);
+    assert_eq!(v["format_version"], 2);
     assert_eq!(
         v["units"],
         serde_json::json!({"total": 30, "from": 0, "to": 30})
@@ -108,7 +109,7 @@ fn results_read_back_and_hold_what_they_claim() {
             .map(|r| r[6].as_f64().unwrap())
             .collect();
         let mean = mine.iter().sum::<f64>() / mine.len() as f64;
-        assert!((p["mean"].as_f64().unwrap() - mean).abs() < 1e-9);
+        assert!((p["mean"]["estimate"].as_f64().unwrap() - mean).abs() < 1e-9);
     }
     // The CSV quotes labels and has one line per point.
     let csv = set.csv();
@@ -134,7 +135,7 @@ fn partial_results_give_partial_statistics_but_do_not_merge() {
     assert_eq!(v["points"][3]["n"], 2, "units 3 and 9 (point 3)");
     assert_eq!(v["points"][1]["n"], 1, "unit 7 (point 1)");
     assert_eq!(v["points"][0]["n"], 0);
-    assert_eq!(v["points"][0]["mean"], serde_json::Value::Null);
+    assert_eq!(v["points"][0]["mean"]["estimate"], serde_json::Value::Null);
     let e = merge(&[("part.json", &text)]).unwrap_err().to_string();
     assert_eq!(
         e,
@@ -203,8 +204,8 @@ fn damaged_results_are_refused_with_the_reason() {
         .to_string()
         .starts_with("not JSON"));
     assert_eq!(
-        edit(&|v| v["format_version"] = 2.into()),
-        "format_version 2 is not supported (this build reads 1)"
+        edit(&|v| v["format_version"] = 1.into()),
+        "format_version 1 is not supported (this build reads format_version 2): rerun the experiment with this build"
     );
     assert!(edit(&|v| v["version"] = "0.0.1".into())
         .starts_with("made by torus-search 0.0.1, but this is"));
@@ -212,8 +213,10 @@ fn damaged_results_are_refused_with_the_reason() {
         .starts_with("its spec does not plan here: experiment must be one of"));
     assert!(edit(&|v| v["experiment"]["title"] = "x".into())
         .starts_with("the experiment header (experiment.title) does not match"));
-    assert!(edit(&|v| v["points"][2]["mean"] = 1.5.into())
-        .starts_with("points[2].mean (statistics are derived from the rows) does not match"));
+    assert!(edit(&|v| v["points"][2]["mean"]["lo"] = 1.5.into())
+        .starts_with("points[2].mean.lo (statistics are derived from the rows) does not match"));
+    assert!(edit(&|v| v["paired"][1]["wins"] = 99.into())
+        .starts_with("paired[1].wins (statistics are derived from the rows) does not match"));
     assert!(edit(&|v| v["points"][1]["config"]["c"] = 3.into()).starts_with("points[1].config.c"));
     assert_eq!(
         edit(&|v| v["rows"][3][6] = 999.into()),
@@ -264,11 +267,17 @@ fn statistics_on_known_data_keep_the_capped_trial() {
     let set = ResultSet::new(p, 0, 5, rows).unwrap();
     let s = &set.stats()[0];
     assert_eq!((s.n, s.capped, s.found), (5, 1, 4));
-    assert!((s.mean - 4.6).abs() < 1e-12);
+    assert!((s.mean.estimate - 4.6).abs() < 1e-12);
     let sd = (41.2f64 / 4.0).sqrt();
     assert!((s.sd - sd).abs() < 1e-12);
-    let half = 2.776 * sd / 5f64.sqrt();
-    assert!((s.ci_low - (4.6 - half)).abs() < 1e-9 && (s.ci_high - (4.6 + half)).abs() < 1e-9);
+    // The mean's interval is the bootstrap of the values in trial order,
+    // within their range; the median's needs six trials.
+    let steps = [2.0, 3.0, 3.0, 5.0, 10.0];
+    let excess = [1.0, 2.0, 2.0, 4.0, 9.0];
+    assert_eq!(s.mean, bca_means(&[&steps, &excess])[0]);
+    assert!(2.0 <= s.mean.lo && s.mean.hi <= 10.0, "{:?}", s.mean);
+    assert_eq!(s.median.estimate, 3.0);
+    assert!(s.median.lo.is_nan());
     // q1 = 3, q3 = 5, IQR 2: the upper fence is 8, so 10 is past the whisker.
     let b = &s.spread;
     assert_eq!((b.median, b.q1, b.q3), (3.0, 3.0, 5.0));
@@ -277,7 +286,9 @@ fn statistics_on_known_data_keep_the_capped_trial() {
         (2.0, 5.0, 2.0, 10.0)
     );
     assert_eq!(s.mean_optimal, Some(1.0));
-    assert!((s.excess_mean.unwrap() - 3.6).abs() < 1e-12);
+    let excess = s.excess_mean.unwrap();
+    assert!((excess.estimate - 3.6).abs() < 1e-12);
+    assert_eq!(excess, bca_means(&[&steps, &[1.0, 2.0, 2.0, 4.0, 9.0]])[1]);
     // A capped row must sit at the cap; a row cannot exceed it.
     let bad = |steps, found| {
         let p = plan(
@@ -330,7 +341,11 @@ fn priors_sample_the_targets_episodes_draw() {
     // is 6 exactly; 300 samples have sd ≈ 2.45, so ±5 standard errors is
     // ±0.71 (sampling σ = 10 instead, a plausible bug, still passes; the
     // σ = 0 check above catches a prior that ignores σ).
-    assert!((stats[3].mean - 6.0).abs() < 0.71, "{}", stats[3].mean);
+    assert!(
+        (stats[3].mean.estimate - 6.0).abs() < 0.71,
+        "{:?}",
+        stats[3].mean
+    );
 }
 
 #[test]

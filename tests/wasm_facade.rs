@@ -357,8 +357,19 @@ fn batch_trials_match_the_core_and_summarize() {
         .unwrap();
     assert_eq!(num(&s, "trials"), 4.0);
     let want = flat.chunks(7).map(|t| t[0]).sum::<f64>() / 4.0;
-    assert!((num(&s, "mean_steps") - want).abs() < 1e-9);
-    assert_eq!(js_sys::Array::from(&get(&s, "ci95_steps")).length(), 2);
+    let mean = get(&s, "mean_steps");
+    assert!((num(&mean, "estimate") - want).abs() < 1e-9);
+    // The interval's bits are the native core's: the same resampling stream.
+    let core: Vec<_> = flat
+        .chunks(7)
+        .map(|t| torus_search::run::episode::TrialResult::from_fields(t).unwrap())
+        .collect();
+    let native = torus_search::analysis::stats::Summary::of(&core).steps;
+    assert_eq!((num(&mean, "lo"), num(&mean, "hi")), (native.lo, native.hi));
+    assert_eq!(
+        get(&mean, "method").as_string().as_deref(),
+        Some("expanded-bca-bootstrap")
+    );
     assert!(facade::summarize_trials(&[1.0, 2.0]).is_err());
     assert!(facade::summarize_trials(&[1.0, 2.0, 0.5, 3.0, 0.0, 0.0, 0.0]).is_err());
 }
@@ -418,11 +429,22 @@ fn experiments_run_split_and_match_the_core() {
         .unwrap();
     let p = Plan::from_spec_text(spec).unwrap();
     let core_rows = core::run_units(&p, 0, 6).unwrap();
-    assert_eq!(text, ResultSet::new(p, 0, 6, core_rows).unwrap().to_json());
+    let core = ResultSet::new(p, 0, 6, core_rows).unwrap();
+    assert_eq!(text, core.to_json());
     let csv = facade::experiment_csv(&text)
         .map_err(JsValue::from)
         .unwrap();
     assert_eq!(csv.lines().count(), 3);
+    // The per-trial and paired CSVs are the core's, from the result text.
+    let trials = facade::experiment_trials_csv(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!((trials.lines().count(), &trials), (7, &core.trials_csv()));
+    let paired = facade::experiment_paired_csv(&text)
+        .map_err(JsValue::from)
+        .unwrap();
+    assert_eq!(paired, core.paired_csv());
+    assert!(facade::experiment_trials_csv("{").is_err());
     let read = facade::experiment_read(&text)
         .map_err(JsValue::from)
         .unwrap();

@@ -175,9 +175,13 @@ pub fn blind_mean(cfg: &Config, i: u64) -> Result<Exact, ParamError> {
 /// What `run --blind` reports: trials' blind paths counted exactly.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct BlindReport<'a> {
-    /// The exact means of the trials' blind paths: their mean estimates
-    /// `E[min(T, step_cap)]`, with a 95% CI over trials.
-    pub blind_mean: crate::analysis::stats::MeanCi,
+    /// Trials counted.
+    pub trials: u64,
+    /// The mean of the trials' blind paths' exact means, which estimates
+    /// `E[min(T, step_cap)]`, with its bootstrap interval over trials.
+    pub blind_mean: crate::analysis::interval::Interval,
+    /// The standard deviation of the trials' exact means (n − 1).
+    pub sd: f64,
     /// The smallest and largest trial's exact mean.
     pub min: f64,
     /// See `min`.

@@ -1,44 +1,18 @@
-//! Summaries over trials: means with t-based 95% confidence intervals, the
-//! paper's ASOO, ratios, quartiles.
+//! Summaries over trials: means with bootstrap intervals, medians with
+//! order-statistic intervals, the paper's ASOO, ratios, quartiles; and the
+//! t-interval that tests compare with.
 
+pub use super::quantiles::{quantile, t975};
+
+use super::bootstrap::{bca_mean, bca_means};
+use super::interval::Interval;
+use super::median::median_interval;
 use crate::game::counters::Counters;
 use crate::run::episode::TrialResult;
 
-/// The two-sided 95% quantile of Student's t with `df` degrees of freedom
-/// (NaN for 0): within 5 × 10⁻⁴ up to 30 (a three-decimal table) and
-/// 3 × 10⁻⁸ above.
-pub fn t975(df: u64) -> f64 {
-    // As printed t tables give them. Six decimals would move the CIs of
-    // samples of 2–31 by up to 0.02%, and a result file's statistics must
-    // match the ones recomputed from its rows, so every file written with
-    // this table (experiments, shards) would then be refused.
-    const TABLE: [f64; 30] = [
-        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160,
-        2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056,
-        2.052, 2.048, 2.045, 2.042,
-    ];
-    match df {
-        0 => f64::NAN,
-        1..=30 => TABLE[df as usize - 1],
-        _ => {
-            // Cornish–Fisher expansion around z (Abramowitz & Stegun 26.7.5);
-            // error below 3e-8 for df > 30 (largest at 31).
-            let z: f64 = 1.959_963_984_540_054;
-            let v = df as f64;
-            let z3 = z.powi(3);
-            let z5 = z.powi(5);
-            let z7 = z.powi(7);
-            let z9 = z.powi(9);
-            z + (z3 + z) / (4.0 * v)
-                + (5.0 * z5 + 16.0 * z3 + 3.0 * z) / (96.0 * v * v)
-                + (3.0 * z7 + 19.0 * z5 + 17.0 * z3 - 15.0 * z) / (384.0 * v.powi(3))
-                + (79.0 * z9 + 776.0 * z7 + 1482.0 * z5 - 1920.0 * z3 - 945.0 * z)
-                    / (92160.0 * v.powi(4))
-        }
-    }
-}
-
-/// Mean, standard deviation and 95% CI of a sample.
+/// Mean, standard deviation and t-based 95% CI of a sample: for tests
+/// and comparisons (outputs give [`Interval`]s, which suit capped,
+/// heavy-tailed trials).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct MeanCi {
     /// Sample size.
@@ -99,17 +73,6 @@ impl MeanCi {
     }
 }
 
-/// The quantile `q` of sorted data (linear interpolation, R type 7).
-pub fn quantile(sorted: &[f64], q: f64) -> f64 {
-    if sorted.is_empty() {
-        return f64::NAN;
-    }
-    let h = (sorted.len() - 1) as f64 * q;
-    let lo = h.floor() as usize;
-    let hi = h.ceil() as usize;
-    sorted[lo] + (h - lo as f64) * (sorted[hi] - sorted[lo])
-}
-
 /// Quartiles, Tukey whiskers and range of a sample: what a box plot draws.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct BoxStats {
@@ -164,26 +127,26 @@ impl BoxStats {
 
 /// Everything reported over a batch of trials. It serialises flat, with
 /// the field names the CLI's `--json` and the page's batch panel use:
-/// `trials, mean_steps, ci95_steps, mean_optimal, ci95_optimal, asoo,
-/// ci95_asoo, mean_ratio, ci95_ratio, steps_over_mean_optimal, median_steps,
-/// q1_steps, q3_steps, zero_optimal, capped, rollouts, rollout_steps,
-/// truncated_rollouts` (a CI is `[lo, hi]`).
+/// `trials, mean_steps, mean_optimal, asoo, mean_ratio,
+/// steps_over_mean_optimal, median_steps, q1_steps, q3_steps, zero_optimal,
+/// capped, rollouts, rollout_steps, truncated_rollouts`, where the means and
+/// the median are intervals (`{estimate, lo, hi, level, method}`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     /// Trials run.
     pub trials: u64,
-    /// Steps per trial.
-    pub steps: MeanCi,
-    /// Optimal steps per trial.
-    pub optimal: MeanCi,
+    /// Mean steps per trial, with its bootstrap interval.
+    pub steps: Interval,
+    /// Mean optimal steps per trial.
+    pub optimal: Interval,
     /// ASOO as the authors' code computes it: the mean of (steps − optimal).
-    pub asoo: MeanCi,
+    pub asoo: Interval,
     /// Mean of steps/optimal over trials with optimal > 0.
-    pub ratio: MeanCi,
+    pub ratio: Interval,
     /// Mean steps / mean optimal.
     pub steps_over_mean_optimal: f64,
-    /// Median steps.
-    pub median_steps: f64,
+    /// Median steps, with its order-statistic interval.
+    pub median_steps: Interval,
     /// First quartile of steps.
     pub q1_steps: f64,
     /// Third quartile of steps.
@@ -197,12 +160,19 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Summarises `results`.
+    /// Summarises `results` (in trial order: the intervals' resampling is
+    /// seeded by the values in order).
     pub fn of(results: &[TrialResult]) -> Summary {
-        let steps = MeanCi::of(results.iter().map(|r| r.steps as f64));
-        let optimal = MeanCi::of(results.iter().map(|r| r.optimal as f64));
-        let asoo = MeanCi::of(results.iter().map(|r| r.steps as f64 - r.optimal as f64));
-        let ratio = MeanCi::of(results.iter().filter_map(TrialResult::ratio));
+        let column = |f: &dyn Fn(&TrialResult) -> f64| results.iter().map(f).collect::<Vec<_>>();
+        // Steps and steps − optimal from the same resamples.
+        let [steps, asoo] = bca_means(&[
+            &column(&|r| r.steps as f64),
+            &column(&|r| r.steps as f64 - r.optimal as f64),
+        ])[..] else {
+            unreachable!("two columns give two intervals")
+        };
+        let optimal = bca_mean(&column(&|r| r.optimal as f64));
+        let ratios: Vec<f64> = results.iter().filter_map(TrialResult::ratio).collect();
         let mut sorted: Vec<f64> = results.iter().map(|r| r.steps as f64).collect();
         sorted.sort_by(f64::total_cmp);
         let mut counters = Counters::default();
@@ -214,9 +184,9 @@ impl Summary {
             steps,
             optimal,
             asoo,
-            ratio,
-            steps_over_mean_optimal: steps.mean / optimal.mean,
-            median_steps: quantile(&sorted, 0.5),
+            ratio: bca_mean(&ratios),
+            steps_over_mean_optimal: steps.estimate / optimal.estimate,
+            median_steps: median_interval(&sorted),
             q1_steps: quantile(&sorted, 0.25),
             q3_steps: quantile(&sorted, 0.75),
             zero_optimal: results.iter().filter(|r| r.optimal == 0).count() as u64,
@@ -231,16 +201,12 @@ impl serde::Serialize for Summary {
         #[derive(serde::Serialize)]
         struct Flat {
             trials: u64,
-            mean_steps: f64,
-            ci95_steps: [f64; 2],
-            mean_optimal: f64,
-            ci95_optimal: [f64; 2],
-            asoo: f64,
-            ci95_asoo: [f64; 2],
-            mean_ratio: f64,
-            ci95_ratio: [f64; 2],
+            mean_steps: Interval,
+            mean_optimal: Interval,
+            asoo: Interval,
+            mean_ratio: Interval,
             steps_over_mean_optimal: f64,
-            median_steps: f64,
+            median_steps: Interval,
             q1_steps: f64,
             q3_steps: f64,
             zero_optimal: u64,
@@ -249,17 +215,12 @@ impl serde::Serialize for Summary {
             rollout_steps: u64,
             truncated_rollouts: u64,
         }
-        let ci = |m: &MeanCi| [m.lo, m.hi];
         Flat {
             trials: self.trials,
-            mean_steps: self.steps.mean,
-            ci95_steps: ci(&self.steps),
-            mean_optimal: self.optimal.mean,
-            ci95_optimal: ci(&self.optimal),
-            asoo: self.asoo.mean,
-            ci95_asoo: ci(&self.asoo),
-            mean_ratio: self.ratio.mean,
-            ci95_ratio: ci(&self.ratio),
+            mean_steps: self.steps,
+            mean_optimal: self.optimal,
+            asoo: self.asoo,
+            mean_ratio: self.ratio,
             steps_over_mean_optimal: self.steps_over_mean_optimal,
             median_steps: self.median_steps,
             q1_steps: self.q1_steps,
@@ -277,44 +238,6 @@ impl serde::Serialize for Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn t_quantiles_match_reference_values() {
-        // scipy.stats.t.ppf(0.975, df) to nine decimals: the table up to
-        // df = 30 (three decimals, so within 5e-4) and the expansion above
-        // it, which a slip moving t975(31) by 5e-8 or more fails.
-        let reference = [
-            (1, 12.706204736),
-            (2, 4.302652730),
-            (4, 2.776445105),
-            (10, 2.228138852),
-            (26, 2.055529439),
-            (30, 2.042272456),
-            (31, 2.039513446),
-            (32, 2.036933343),
-            (40, 2.021075390),
-            (50, 2.008559112),
-            (64, 1.997729654),
-            (100, 1.983971519),
-            (128, 1.978670850),
-            (200, 1.971896224),
-            (1000, 1.962339081),
-            (1_000_000, 1.959966357),
-        ];
-        for (df, t) in reference {
-            let tol = if df <= 30 { 5e-4 } else { 5e-8 };
-            assert!(
-                (t975(df) - t).abs() < tol,
-                "t975({df}) = {} against {t}",
-                t975(df)
-            );
-        }
-        assert!(t975(0).is_nan(), "no degrees of freedom: no quantile");
-        // Decreasing in df, through the seam between table and expansion.
-        for df in 1..200 {
-            assert!(t975(df + 1) < t975(df), "t975 rises at df = {df}");
-        }
-    }
 
     #[test]
     fn mean_ci_and_quartiles() {
@@ -362,14 +285,23 @@ mod tests {
         ];
         let s = Summary::of(&results);
         assert_eq!(s.trials, 4);
-        assert_eq!((s.steps.mean, s.optimal.mean), (25.0, 5.0));
+        assert_eq!((s.steps.estimate, s.optimal.estimate), (25.0, 5.0));
         // ASOO: the mean of steps − optimal (5, 20, 20, 35).
-        assert_eq!(s.asoo.mean, 20.0);
+        assert_eq!(s.asoo.estimate, 20.0);
+        let joint = bca_means(&[&[10.0, 20.0, 30.0, 40.0], &[5.0, 20.0, 20.0, 35.0]]);
+        assert_eq!((s.steps, s.asoo), (joint[0], joint[1]));
+        assert_eq!(s.optimal, bca_mean(&[5.0, 0.0, 10.0, 5.0]));
         // The ratio leaves out the trial with optimal 0: (2 + 3 + 8) / 3.
-        assert_eq!((s.ratio.n, s.zero_optimal), (3, 1));
-        assert!((s.ratio.mean - 13.0 / 3.0).abs() < 1e-12);
+        assert_eq!(s.zero_optimal, 1);
+        assert_eq!(s.ratio, bca_mean(&[2.0, 3.0, 8.0]));
+        assert!((s.ratio.estimate - 13.0 / 3.0).abs() < 1e-12);
         assert_eq!(s.steps_over_mean_optimal, 5.0);
-        assert_eq!((s.q1_steps, s.median_steps, s.q3_steps), (17.5, 25.0, 32.5));
+        assert_eq!(
+            (s.q1_steps, s.median_steps.estimate, s.q3_steps),
+            (17.5, 25.0, 32.5)
+        );
+        // Intervals stay within the trials' range.
+        assert!(s.steps.lo >= 10.0 && s.steps.hi <= 40.0, "{:?}", s.steps);
         assert_eq!(s.capped, 1, "the one trial not found");
         assert_eq!(
             s.counters,

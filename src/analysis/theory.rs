@@ -86,6 +86,55 @@ pub fn rw_hitting_times(torus: &Torus, sensor: &Sensor, target: u32) -> Vec<f64>
         .collect()
 }
 
+/// The law of `min(T, cap)` for the simple random walk from `start`, `T`
+/// the first step at which a cell within `sensor`'s radius of `target` is
+/// entered (0 when the start detects it): entry `t` is `P(min(T, cap) = t)`
+/// for `t` in `0..=cap`, so the last entry is `P(T ≥ cap)`, the capped mass.
+/// Exact up to rounding, by pushing the walk's undetected mass one step at
+/// a time (O(cap · N²)).
+pub fn rw_hitting_law(
+    torus: &Torus,
+    sensor: &Sensor,
+    start: u32,
+    target: u32,
+    cap: u32,
+) -> Vec<f64> {
+    let cells = torus.cells();
+    let det: Vec<bool> = (0..cells as u32)
+        .map(|c| sensor.detects(torus, c, target))
+        .collect();
+    let mut law = vec![0.0; cap as usize + 1];
+    if det[start as usize] {
+        law[0] = 1.0;
+        return law;
+    }
+    let mut mass = vec![0.0f64; cells];
+    mass[start as usize] = 1.0;
+    let mut next = vec![0.0f64; cells];
+    for p in law.iter_mut().take(cap as usize).skip(1) {
+        next.iter_mut().for_each(|m| *m = 0.0);
+        let mut hit = 0.0;
+        for (c, &m) in mass.iter().enumerate() {
+            if m == 0.0 {
+                continue;
+            }
+            for mv in crate::game::lattice::Move::ALL {
+                let nb = torus.step(c as u32, mv) as usize;
+                if det[nb] {
+                    hit += m / 4.0;
+                } else {
+                    next[nb] += m / 4.0;
+                }
+            }
+        }
+        std::mem::swap(&mut mass, &mut next);
+        *p = hit;
+    }
+    // Undetected after cap − 1 steps: the trial reaches the cap.
+    law[cap as usize] = mass.iter().sum();
+    law
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

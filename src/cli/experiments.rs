@@ -16,7 +16,7 @@ pub(super) fn experiment_command() -> Command {
         .collect::<Vec<_>>()
         .join(", ");
     let cmd = Command::new("experiment")
-        .about("Run a named experiment (a figure of the paper, or a custom sweep) and write DIR/<name>.json, .csv and .svg.")
+        .about("Run a named experiment (a figure of the paper, or a custom sweep) and write DIR/<name>.json, .csv, .trials.csv, .paired.csv and .svg.")
         .after_help("Every point keeps the seed: trial i of each point uses the same random streams. \
 With --shard i/n only DIR/<name>.shard-i-of-n.json is written; `torus-search merge` joins the shards \
 into the files a single run writes, byte for byte (docs/cluster.md). decision-time (and any --ms) \
@@ -77,7 +77,7 @@ budgets decisions by the clock: those results depend on the machine and its load
 
 pub(super) fn merge_command() -> Command {
     Command::new("merge")
-        .about("Join shard results of one experiment into DIR/<name>.json, .csv and .svg (exactly the single run's files).")
+        .about("Join shard results of one experiment into DIR/<name>.json, .csv, .trials.csv, .paired.csv and .svg (exactly the single run's files).")
         .arg(
             Arg::new("files")
                 .value_name("FILE")
@@ -171,12 +171,15 @@ pub(super) fn write_files(
     Ok(done)
 }
 
-/// The three files of a complete result.
+/// The files of a complete result: the result JSON, the per-point,
+/// per-trial and paired CSVs, and the chart.
 pub(super) fn result_files(set: &ResultSet) -> Vec<(String, String)> {
     let name = &set.plan.header.name;
     vec![
         (format!("{name}.json"), set.to_json()),
         (format!("{name}.csv"), set.csv()),
+        (format!("{name}.trials.csv"), set.trials_csv()),
+        (format!("{name}.paired.csv"), set.paired_csv()),
         (format!("{name}.svg"), experiment::svg(set)),
     ]
 }

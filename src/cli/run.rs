@@ -2,8 +2,10 @@
 
 use super::args::{build_config, param_args, preset_arg, thread_pool, threads_arg, with_progress};
 use super::usage::{usage, UsageError};
+use crate::analysis::bootstrap::bca_mean;
 use crate::analysis::bound;
 use crate::analysis::exact;
+use crate::analysis::interval::Interval;
 use crate::analysis::report;
 use crate::analysis::stats::{self, Summary};
 use crate::config::schema::ConfigParam;
@@ -85,7 +87,7 @@ pub(super) fn run(m: &ArgMatches) -> Result<(), UsageError> {
     let seconds = t0.elapsed().as_secs_f64();
     let s = Summary::of(&results);
     let lower_bound = bound::lower_bound_capped(&cfg).map_err(usage)?;
-    let mean_over_bound = (lower_bound > 0.0).then(|| s.steps.mean / lower_bound);
+    let mean_over_bound = (lower_bound > 0.0).then(|| s.steps.estimate / lower_bound);
     if m.get_flag("json") {
         let report = report::Report {
             summary: &s,
@@ -174,10 +176,13 @@ pub(super) fn run_blind(
     });
     let seconds = t0.elapsed().as_secs_f64();
     let n = each.len().max(1) as f64;
-    let blind_mean = stats::MeanCi::of(each.iter().map(|e| e.mean));
+    let means: Vec<f64> = each.iter().map(|e| e.mean).collect();
+    let blind_mean = bca_mean(&means);
     let lower_bound = bound::lower_bound_capped(cfg).map_err(usage)?;
     let report = exact::BlindReport {
+        trials,
         blind_mean,
+        sd: stats::MeanCi::of(means.iter().copied()).sd,
         min: each.iter().map(|e| e.mean).fold(f64::INFINITY, f64::min),
         max: each
             .iter()
@@ -186,7 +191,7 @@ pub(super) fn run_blind(
         capped_probability: each.iter().map(|e| e.capped_probability).sum::<f64>() / n,
         mean_moves: each.iter().map(|e| e.moves as f64).sum::<f64>() / n,
         lower_bound,
-        mean_over_bound: (lower_bound > 0.0).then(|| blind_mean.mean / lower_bound),
+        mean_over_bound: (lower_bound > 0.0).then(|| blind_mean.estimate / lower_bound),
         seconds,
         threads,
         seed: cfg.seed,
@@ -210,11 +215,9 @@ pub(super) fn run_blind(
     );
     out!("searcher: {}", cfg.label());
     out!(
-        "{:<28}{:>10.3}   95% CI [{:.3}, {:.3}]",
-        "mean steps",
-        blind_mean.mean,
-        blind_mean.lo,
-        blind_mean.hi
+        "{:<28}{}",
+        "mean steps   [95% interval]",
+        interval(&blind_mean)
     );
     out!(
         "{:<28}{:>10.3} to {:.3}",
@@ -233,7 +236,23 @@ pub(super) fn run_blind(
     out!("{:<28}{:>10.3e}", "P(capped)", report.capped_probability);
     out!("{:<28}{:.1}", "moves driven per trial", report.mean_moves);
     out!("{:<28}{:.3} s ({} threads)", "time", seconds, threads);
+    out!("{METHODS}");
     Ok(())
+}
+
+/// How the text reports' intervals are made.
+const METHODS: &str = "95% intervals: means by a seeded BCa bootstrap with expanded tails, medians by order statistics (EXPERIMENTS.md, Intervals).";
+
+/// An estimate and its interval, as the text tables show them.
+fn interval(m: &Interval) -> String {
+    let end = |v: f64| {
+        if v.is_finite() {
+            format!("{v:.3}")
+        } else {
+            "–".into()
+        }
+    };
+    format!("{:>10.3}   [{}, {}]", m.estimate, end(m.lo), end(m.hi))
 }
 
 pub(super) fn print_table(
@@ -250,9 +269,6 @@ pub(super) fn print_table(
             who += &format!(" {}={}", e.param().key, e.value(cfg).text());
         }
     }
-    let ci = |m: &crate::analysis::stats::MeanCi| {
-        format!("{:>10.3}   [{:.3}, {:.3}]", m.mean, m.lo, m.hi)
-    };
     out!(
         "torus-search: N={} r_v={} prior={} start={},{} seed={}",
         cfg.n,
@@ -264,30 +280,38 @@ pub(super) fn print_table(
     );
     out!("searcher: {who}");
     out!("{:<28}{}", "trials", s.trials);
-    out!("{:<28}{}", "mean steps   [95% CI]", ci(&s.steps));
-    out!("{:<28}{}", "mean optimal [95% CI]", ci(&s.optimal));
+    out!(
+        "{:<28}{}",
+        "mean steps   [95% interval]",
+        interval(&s.steps)
+    );
+    out!(
+        "{:<28}{}",
+        "mean optimal [95% interval]",
+        interval(&s.optimal)
+    );
     // The bound is on the mean over the prior, not on any one trial.
     out!(
         "{:<28}{:>10.3}   (mean steps / bound {})",
         "lower bound (any searcher)",
         lower_bound,
         if lower_bound > 0.0 {
-            format!("{:.3}", s.steps.mean / lower_bound)
+            format!("{:.3}", s.steps.estimate / lower_bound)
         } else {
             "–".into()
         }
     );
-    out!("{:<28}{}", "ASOO = mean(steps-opt)", ci(&s.asoo));
-    out!("{:<28}{}", "mean steps/opt", ci(&s.ratio));
+    out!("{:<28}{}", "ASOO = mean(steps-opt)", interval(&s.asoo));
+    out!("{:<28}{}", "mean steps/opt", interval(&s.ratio));
     out!(
         "{:<28}{:>10.3}",
         "mean steps / mean opt",
         s.steps_over_mean_optimal
     );
     out!(
-        "{:<28}{:>10.1}   (q1 {:.1}, q3 {:.1})",
-        "median steps",
-        s.median_steps,
+        "{:<28}{}   (q1 {:.1}, q3 {:.1})",
+        "median steps [95% interval]",
+        interval(&s.median_steps),
         s.q1_steps,
         s.q3_steps
     );
@@ -301,4 +325,5 @@ pub(super) fn print_table(
         s.counters.truncated
     );
     out!("{:<28}{:.3} s on {threads} threads", "time", seconds);
+    out!("{METHODS}");
 }

@@ -329,8 +329,8 @@ fn boxes(
         [
             s.spread.whisker_low,
             s.spread.whisker_high,
-            s.ci_low,
-            s.ci_high,
+            s.mean.lo,
+            s.mean.hi,
             s.lower_bound.unwrap_or(f64::NAN),
             s.spread.min,
             s.spread.max,
@@ -459,13 +459,17 @@ where
         )?;
         // The mean and its 95% CI, beside the box.
         let mx = x1 - (x1 - x0) * 0.12;
-        if s.ci_low.is_finite() {
+        if s.mean.lo.is_finite() {
             chart.draw_series([PathElement::new(
-                vec![(mx, y(s.ci_low)), (mx, y(s.ci_high))],
+                vec![(mx, y(s.mean.lo)), (mx, y(s.mean.hi))],
                 BLACK.stroke_width(2),
             )])?;
         }
-        chart.draw_series([Cross::new((mx, y(s.mean)), 4, BLACK.stroke_width(2))])?;
+        chart.draw_series([Cross::new(
+            (mx, y(s.mean.estimate)),
+            4,
+            BLACK.stroke_width(2),
+        )])?;
     }
     Ok(())
 }
@@ -496,9 +500,9 @@ fn lines(
         .iter()
         .flat_map(|s| {
             [
-                s.mean,
-                s.ci_low,
-                s.ci_high,
+                s.mean.estimate,
+                s.mean.lo,
+                s.mean.hi,
                 s.lower_bound.unwrap_or(f64::NAN),
             ]
         })
@@ -632,25 +636,25 @@ where
         let pts: Vec<(f64, &PointStats)> = series_points(si).filter(|(_, s)| s.n > 0).collect();
         let band: Vec<(f64, f64)> = pts
             .iter()
-            .filter(|(_, s)| s.ci_low.is_finite())
-            .map(|(x, s)| (*x, y(s.ci_low)))
+            .filter(|(_, s)| s.mean.lo.is_finite())
+            .map(|(x, s)| (*x, y(s.mean.lo)))
             .chain(
                 pts.iter()
                     .rev()
-                    .filter(|(_, s)| s.ci_high.is_finite())
-                    .map(|(x, s)| (*x, y(s.ci_high))),
+                    .filter(|(_, s)| s.mean.hi.is_finite())
+                    .map(|(x, s)| (*x, y(s.mean.hi))),
             )
             .collect();
         if band.len() >= 4 {
             chart.draw_series([Polygon::new(band, c.mix(0.18).filled())])?;
         }
         chart.draw_series(LineSeries::new(
-            pts.iter().map(|(x, s)| (*x, y(s.mean))),
+            pts.iter().map(|(x, s)| (*x, y(s.mean.estimate))),
             c.stroke_width(2),
         ))?;
         chart.draw_series(
             pts.iter()
-                .map(|(x, s)| Circle::new((*x, y(s.mean)), 3, c.filled())),
+                .map(|(x, s)| Circle::new((*x, y(s.mean.estimate)), 3, c.filled())),
         )?;
         let bound = bound_of(si);
         if bound.len() >= 2 && (!shared || si == 0) {

@@ -107,6 +107,10 @@ pub struct Definition {
     pub x: Option<XDef>,
     /// The series compared.
     pub series: fn() -> Vec<SeriesDef>,
+    /// Paired comparisons `(series, reference)`, by label, besides each
+    /// series against the first: those the claims about this experiment
+    /// rest on.
+    pub pairs: &'static [(&'static str, &'static str)],
     /// A log y axis fits.
     pub y_log: bool,
     /// Published values drawn beside the results.
@@ -237,6 +241,13 @@ fn none() -> Vec<SeriesDef> {
     Vec::new()
 }
 
+/// The paper's claims that MCTS beats the random walk and the Lévy flight,
+/// for MCTS with Lévy rollouts (MCTS with RW rollouts is the first series).
+const MCTS_AGAINST_WALKS: &[(&str, &str)] = &[
+    ("Random walk", "MCTS, Lévy rollouts"),
+    ("Lévy flight", "MCTS, Lévy rollouts"),
+];
+
 const SIGMA_LABEL: &str = "σ (standard deviation of the target prior)";
 const LOOPS_LABEL: &str = "L (MCTS loops per move)";
 
@@ -261,6 +272,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: targets,
+        pairs: &[],
         y_log: false,
         references: &[],
         note: None,
@@ -282,6 +294,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: every_searcher,
+        pairs: MCTS_AGAINST_WALKS,
         y_log: true,
         references: &[],
         note: None,
@@ -298,6 +311,7 @@ pub static DEFINITIONS: &[Definition] = &[
         defaults: &[("prior", "delta")],
         x: None,
         series: every_searcher,
+        pairs: MCTS_AGAINST_WALKS,
         y_log: true,
         references: &[],
         note: None,
@@ -319,6 +333,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: true,
         }),
         series: mcts_both,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: None,
@@ -340,6 +355,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: true,
         }),
         series: mcts_both,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: Some(TIMING_NOTE),
@@ -361,6 +377,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: best_searchers,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: None,
@@ -377,6 +394,7 @@ pub static DEFINITIONS: &[Definition] = &[
         defaults: &[("prior", "uniform")],
         x: None,
         series: every_searcher,
+        pairs: MCTS_AGAINST_WALKS,
         y_log: true,
         references: &[],
         note: None,
@@ -398,6 +416,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: mcts_and_nsarw,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: None,
@@ -425,6 +444,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: true,
         }),
         series: each_variant,
+        pairs: &[],
         y_log: false,
         references: &[ReferenceDef {
             label: "authors' published means (PlotMCTsKnownN20.m)",
@@ -450,6 +470,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: beliefs,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: None,
@@ -471,6 +492,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: false,
         }),
         series: levy_searchers,
+        pairs: &[],
         y_log: false,
         references: &[],
         note: None,
@@ -492,6 +514,7 @@ pub static DEFINITIONS: &[Definition] = &[
             log: true,
         }),
         series: mcts_both,
+        pairs: &[],
         y_log: true,
         references: &[],
         note: None,
@@ -508,6 +531,7 @@ pub static DEFINITIONS: &[Definition] = &[
         defaults: &[],
         x: None,
         series: none,
+        pairs: &[],
         y_log: false,
         references: &[],
         note: None,

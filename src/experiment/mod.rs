@@ -9,7 +9,8 @@
 //!   of point `u % points` (trial-major), and depends on (plan, u) only. [`run_units`]
 //!   runs any range of them into [`Row`]s; a [`Shard`] is a contiguous range.
 //! * A [`ResultSet`] holds a plan, a unit range and its rows; it gives the
-//!   per-point statistics, the result JSON and the CSV. [`read`] checks a
+//!   per-point statistics, the paired comparisons, the result JSON, the
+//!   per-point, paired and per-trial CSVs. [`read`] checks a
 //!   result JSON back; [`merge`] joins shards into the single-run result,
 //!   byte for byte.
 //!
@@ -18,12 +19,14 @@
 
 mod defs;
 mod output;
+mod pairs;
 mod plan;
 mod read;
 mod result;
 mod run;
 mod spec;
 mod summary;
+mod tidy;
 
 #[cfg(not(target_arch = "wasm32"))]
 mod chart;
@@ -32,9 +35,10 @@ mod chart;
 pub use chart::svg;
 
 pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
-pub use output::CSV_HEADER;
+pub use output::{CSV_HEADER, PAIRED_CSV_HEADER};
+pub use pairs::PairStats;
 pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
-pub use read::{merge, read, MergeError};
+pub use read::{merge, read, read_with_json, MergeError};
 pub use result::{ResultError, ResultSet};
 pub use result::{FORMAT, FORMAT_VERSION};
 pub use run::{
@@ -45,6 +49,7 @@ pub use spec::{
     canonical_param, SeriesSpec, Spec, SpecError, SweepSpec, DEFAULT_PRESET, SPEC_FIELDS,
 };
 pub use summary::{expected_optimal, PointStats};
+pub use tidy::{varying, TRIALS_COLUMNS};
 
 /// An experiment as the CLI's `--list` and the page's picker show it.
 #[derive(Clone, Debug, serde::Serialize)]

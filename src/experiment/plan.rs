@@ -96,6 +96,10 @@ pub struct Plan {
     pub header: Header,
     /// Series-major: every x value of series 0, then of series 1, …
     pub points: Vec<Point>,
+    /// Paired comparisons `(series, reference)` by series index, made at
+    /// every x value: each series against the first, then the definition's
+    /// own pairs; none for target samples.
+    pub pairs: Vec<(usize, usize)>,
 }
 
 /// The most units a plan may have: unit numbers cross to JS as doubles.
@@ -285,6 +289,26 @@ fn points_of(base: &Config, series: &[SeriesDef], x: &XSpec) -> Result<Vec<Point
     Ok(points)
 }
 
+/// The paired comparisons of a plan: each series against the first, then
+/// the definition's pairs (by label; a label not among the series, which a
+/// test rules out for the named experiments, is skipped), without repeats.
+fn pairs_of(spec: &Spec, series: &[SeriesDef]) -> Vec<(usize, usize)> {
+    let def = spec.definition();
+    if def.kind != Kind::Episodes {
+        return Vec::new();
+    }
+    let index = |label: &str| series.iter().position(|s| s.label == label);
+    let mut pairs: Vec<(usize, usize)> = (1..series.len()).map(|s| (s, 0)).collect();
+    for (a, b) in def.pairs {
+        if let (Some(a), Some(b)) = (index(a), index(b)) {
+            if a != b && !pairs.contains(&(a, b)) {
+                pairs.push((a, b));
+            }
+        }
+    }
+    pairs
+}
+
 /// The header of a plan: the definition's title and axes, the chart, the
 /// series' labels and the references.
 fn header_of(spec: &Spec, x: XSpec, series: &[SeriesDef], points: &[Point]) -> Header {
@@ -379,11 +403,13 @@ impl Plan {
                 spec.trials
             )));
         }
+        let pairs = pairs_of(spec, &series);
         let header = header_of(spec, x, &series, &points);
         Ok(Plan {
             spec: spec.clone(),
             header,
             points,
+            pairs,
         })
     }
 
@@ -460,6 +486,15 @@ mod tests {
             for r in &p.header.references {
                 assert_eq!(r.x.len(), r.y.len());
                 assert!(r.x.iter().all(|x| p.header.x.values.contains(x)));
+            }
+            // Every pair the definition names is made.
+            let label = |i: usize| p.header.series[i].as_str();
+            for &(a, b) in d.pairs {
+                assert!(
+                    p.pairs.iter().any(|&(x, y)| (label(x), label(y)) == (a, b)),
+                    "{}: pair ({a}, {b}) names a series it does not have",
+                    d.name
+                );
             }
         }
     }

@@ -94,6 +94,15 @@ fn unsigned(v: &Value, name: &str) -> Result<u64, ResultError> {
 /// statistic that disagrees with the spec and rows, a bad unit range, or a
 /// bad, misplaced or repeated row.
 pub fn read(text: &str) -> Result<ResultSet, ResultError> {
+    read_with_json(text).map(|(set, _)| set)
+}
+
+/// [`read`], with the result's JSON as this build writes it (computed to
+/// check the file's statistics, so a caller that wants it pays once).
+///
+/// # Errors
+/// As [`read`].
+pub fn read_with_json(text: &str) -> Result<(ResultSet, String), ResultError> {
     let v: Value = serde_json::from_str(text).map_err(|e| ResultError::Json(e.to_string()))?;
     let obj = v
         .as_object()
@@ -182,15 +191,18 @@ pub fn read(text: &str) -> Result<ResultSet, ResultError> {
         rows.push(row);
     }
     let set = ResultSet::new(plan, from, to, rows)?;
-    let mine: Value = serde_json::from_str(&set.to_json()).expect("our JSON parses");
-    let theirs = field(obj, "points")?;
-    if !same(theirs, &mine["points"]) {
-        return Err(ResultError::Mismatch(
-            first_difference("points", theirs, &mine["points"])
-                + " (statistics are derived from the rows)",
-        ));
+    let json = set.to_json();
+    let mine: Value = serde_json::from_str(&json).expect("our JSON parses");
+    for part in ["points", "paired"] {
+        let theirs = field(obj, part)?;
+        if !same(theirs, &mine[part]) {
+            return Err(ResultError::Mismatch(
+                first_difference(part, theirs, &mine[part])
+                    + " (statistics are derived from the rows)",
+            ));
+        }
     }
-    Ok(set)
+    Ok((set, json))
 }
 
 /// A merge that cannot be made: the file at fault (if one is) and why.

@@ -11,8 +11,11 @@ use std::fmt;
 
 /// The `format` field of a result file.
 pub const FORMAT: &str = "torus-search-experiment";
-/// The `format_version` this build writes and reads.
-pub const FORMAT_VERSION: u64 = 1;
+/// The `format_version` this build writes and reads. Version 2: intervals
+/// as `{estimate, lo, hi, level, method}` objects from the bootstrap and
+/// order statistics (version 1 had t-intervals as `ci_low`, `ci_high`), and
+/// the paired comparisons (`paired`).
+pub const FORMAT_VERSION: u64 = 2;
 
 /// A result (or a result file) that cannot be used, with what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,7 +59,7 @@ impl fmt::Display for ResultError {
             }
             ResultError::FormatVersion(v) => write!(
                 f,
-                "format_version {v} is not supported (this build reads {})",
+                "format_version {v} is not supported (this build reads format_version {}): rerun the experiment with this build",
                 FORMAT_VERSION
             ),
             ResultError::Version(v) => write!(

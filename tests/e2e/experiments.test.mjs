@@ -49,7 +49,7 @@ function smallQuery({ trials = SMALL.trials, seed = SMALL.seed } = {}) {
   return `?${q}`;
 }
 
-/** The CLI's files for the same experiment: { json, csv } (text). */
+/** The CLI's files for the same experiment: { json, csv, trials, paired } (text). */
 function cliSmall({ trials = SMALL.trials, seed = SMALL.seed } = {}) {
   const dir = mkdtempSync(path.join(tmpdir(), 'torus-e2e-exp-'));
   try {
@@ -58,7 +58,8 @@ function cliSmall({ trials = SMALL.trials, seed = SMALL.seed } = {}) {
     args.push('--sweep', `${SMALL.sweep[0]}=${SMALL.sweep[1].join(',')}`);
     for (const s of SMALL.series) args.push('--series', s);
     execFileSync(BIN, args, { stdio: ['ignore', 'ignore', 'pipe'], timeout: 300_000 });
-    return { json: readFileSync(path.join(dir, 'custom.json'), 'utf8'), csv: readFileSync(path.join(dir, 'custom.csv'), 'utf8') };
+    const file = (ext) => readFileSync(path.join(dir, `custom.${ext}`), 'utf8');
+    return { json: file('json'), csv: file('csv'), trials: file('trials.csv'), paired: file('paired.csv') };
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
@@ -98,18 +99,30 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     assert.equal(await page.inputValue('#exp-seed'), SMALL.seed);
     assert.equal(await page.inputValue('#exp-sweep-key'), 'sigma');
     assert.equal(await page.inputValue('#exp-sweep-values'), '0 3');
+    const controls = ['#exp-chart', '#exp-csv', '#exp-trials-csv', '#exp-paired-csv', '#exp-json', '#exp-svg', '#exp-png'];
     // Nothing to chart or download before a result.
-    for (const id of ['#exp-chart', '#exp-csv', '#exp-json', '#exp-svg', '#exp-png']) {
+    for (const id of controls) {
       assert.equal(await page.locator(id).isDisabled(), true, `${id} before a result`);
     }
     assert.equal(await runAndWait(page), 'done', await page.locator('#exp-status').textContent());
-    for (const id of ['#exp-chart', '#exp-csv', '#exp-json', '#exp-svg', '#exp-png']) {
+    for (const id of controls) {
       assert.equal(await page.locator(id).isDisabled(), false, `${id} with a result`);
     }
     const text = await page.evaluate(() => window.torusTest.experiments.result());
     assert.equal(text, cli.json, 'the page JSON is the CLI JSON');
     assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('csv')), cli.csv, 'the page CSV is the CLI CSV');
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('trials-csv')), cli.trials, 'the per-trial CSV is the CLI\'s');
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('paired-csv')), cli.paired, 'the paired CSV is the CLI\'s');
     const result = JSON.parse(text);
+    // One row per trial; the paired table: RW against MCTS at each σ, as the engine computed it.
+    assert.equal(cli.trials.trim().split('\n').length, 1 + 12);
+    assert.equal(result.paired.length, 2);
+    assert.equal(await page.locator('#exp-paired tbody tr').count(), 2);
+    const first = await page.locator('#exp-paired tbody tr').first().locator('td').allTextContents();
+    const c = result.paired[0];
+    assert.deepEqual(first.slice(0, 4), ['RW', 'MCTS', '0', '3']);
+    assert.equal(first[5], `${c.wins} / ${c.ties} / ${c.losses}`);
+    assert.ok(first[4].startsWith(c.difference.estimate.toFixed(1)), first[4]);
     assert.equal(result.points.length, 4);
     assert.equal(result.units.total, 12);
     // The chart and the table show the result; the status reports the run.
@@ -147,6 +160,8 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     // The Download buttons save files named as the CLI names them.
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#exp-json')]);
     assert.equal(dl.suggestedFilename(), 'custom.json');
+    const [trials] = await Promise.all([page.waitForEvent('download'), page.click('#exp-trials-csv')]);
+    assert.equal(trials.suggestedFilename(), 'custom.trials.csv');
   });
 });
 
@@ -267,6 +282,7 @@ test('a malformed or foreign results file gets a message and changes nothing; a 
     assert.equal(await page.locator('#exp-table tbody tr').count(), 4);
     assert.ok(await page.locator('#exp-figure svg').count() > 0);
     assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('csv')), other.csv);
+    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('trials-csv')), other.trials);
   });
 });
 

@@ -7,9 +7,9 @@
 //
 //   box    box plots: the q1–q3 bar, a median tick, whisker rules, the mean
 //          as a dot, capped counts above, each point's lower bound as a dashed tick
-//   mean   means against x with their 95% CI bands (CI bars with one x
+//   mean   means against x with their 95% interval bands (bars with one x
 //          value), the lower bound dashed, published reference means as crosses
-//   excess mean steps − optimal with 95% CIs (episodes measured in steps)
+//   excess mean steps − optimal with 95% intervals (episodes measured in steps)
 //   hist   (targets experiments) one heatmap of sampled targets per point
 // The experiment's header names the chart that fits it first (its `chart`).
 
@@ -56,7 +56,7 @@ export function chartModes(result) {
   return first && modes.includes(first) ? [first, ...modes.filter((m) => m !== first)] : modes;
 }
 
-export const MODE_LABELS = { box: 'Box plots', mean: 'Means with 95% CI', excess: 'Mean steps − optimal with 95% CI', hist: 'Histograms of targets' };
+export const MODE_LABELS = { box: 'Box plots', mean: 'Means with 95% intervals', excess: 'Mean steps − optimal with 95% intervals', hist: 'Histograms of targets' };
 
 /** The x axis's name in a sentence: its parameter key (its label can be long). */
 export function xName(result) {
@@ -65,25 +65,42 @@ export function xName(result) {
 
 const fmt = (v, d = 1) => (v === null || v === undefined ? '—' : Number.isInteger(v) ? String(v) : Number(v).toFixed(d));
 
-/** The tooltip text of a point. */
-export function pointSummary(result, d) {
+/** The intervals of a result's point ({estimate, lo, hi, level, method}). */
+const INTERVALS = ['mean', 'median', 'excess_mean'];
+
+/**
+ * A point with its intervals flattened as the CSV flattens them: field `f`
+ * becomes `f` (the estimate), `f_lo` and `f_hi`.
+ */
+export function flatPoint(p) {
+  const out = { ...p };
+  for (const f of INTERVALS) {
+    const i = p[f];
+    if (i && typeof i === 'object') Object.assign(out, { [f]: i.estimate, [`${f}_lo`]: i.lo, [`${f}_hi`]: i.hi });
+  }
+  return out;
+}
+
+/** The tooltip text of a point (as the result has it, or flattened). */
+export function pointSummary(result, point) {
   const e = result.experiment;
+  const d = flatPoint(point);
   const lines = [
     e.x.values.length > 1 ? `${d.series}, ${xName(result)} = ${d.x}` : String(d.series),
-    `mean ${fmt(d.mean)} [${fmt(d.ci_low)}, ${fmt(d.ci_high)}] (n = ${d.n})`,
-    `median ${fmt(d.median)}, quartiles ${fmt(d.q1)}–${fmt(d.q3)}`,
+    `mean ${fmt(d.mean)} [${fmt(d.mean_lo)}, ${fmt(d.mean_hi)}] (n = ${d.n})`,
+    `median ${fmt(d.median)} [${fmt(d.median_lo)}, ${fmt(d.median_hi)}], quartiles ${fmt(d.q1)}–${fmt(d.q3)}`,
     `whiskers ${fmt(d.whisker_low)}–${fmt(d.whisker_high)}, range ${fmt(d.min)}–${fmt(d.max)}`,
   ];
-  if (d.excess_mean !== undefined && e.metric !== 'excess') lines.push(`steps − optimal ${fmt(d.excess_mean)} [${fmt(d.excess_ci_low)}, ${fmt(d.excess_ci_high)}]`);
+  if (d.excess_mean !== undefined && e.metric !== 'excess') lines.push(`steps − optimal ${fmt(d.excess_mean)} [${fmt(d.excess_mean_lo)}, ${fmt(d.excess_mean_hi)}]`);
   if (d.capped) lines.push(`${d.capped} capped (kept at the cap)`);
   if (d.lower_bound !== null && d.lower_bound !== undefined) lines.push(`lower bound ${fmt(d.lower_bound, 2)}`);
   lines.push('click: open in the live view');
   return lines.join('\n');
 }
 
-/** Plot data: each point, with its series label as `s` and its x text as `xs`. */
+/** Plot data: each point flattened, with its series label as `s` and its x text as `xs`. */
 function pointData(result) {
-  return result.points.map((p) => ({ ...p, s: String(p.series), xs: String(p.x) }));
+  return result.points.map((p) => ({ ...flatPoint(p), s: String(p.series), xs: String(p.x) }));
 }
 
 /** For a log axis: values ≤ 0 (no steps) are drawn at half the smallest positive value. */
@@ -151,11 +168,11 @@ function boxPlot(Plot, result, width) {
 }
 
 /**
- * Means with 95% CIs: `f` names the mean and CI fields (mean, ci_low,
- * ci_high; or the excess ones). Against a numeric x, lines with CI bands;
- * otherwise dots with CI bars.
+ * Means with 95% intervals: `f` names the mean and interval fields (mean,
+ * mean_lo, mean_hi; or the excess ones). Against a numeric x, lines with
+ * interval bands; otherwise dots with interval bars.
  */
-function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'ci_low', hi: 'ci_high', label: result.experiment.y.label, bounds: true }) {
+function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'mean_lo', hi: 'mean_hi', label: result.experiment.y.label, bounds: true }) {
   const e = result.experiment;
   const data = pointData(result);
   const { single } = layout(result);
@@ -206,7 +223,7 @@ function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'ci_low', hi: 'ci
 
 function excessPlot(Plot, result, width) {
   // The bound is in the metric's units (steps), so it is not drawn here.
-  return meanPlot(Plot, result, width, { mean: 'excess_mean', lo: 'excess_ci_low', hi: 'excess_ci_high', label: 'steps − optimal steps', bounds: false });
+  return meanPlot(Plot, result, width, { mean: 'excess_mean', lo: 'excess_mean_lo', hi: 'excess_mean_hi', label: 'steps − optimal steps', bounds: false });
 }
 
 /** Side of a point's square histogram (its config's n, else √length). */

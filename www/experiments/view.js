@@ -1,7 +1,8 @@
 // The Experiments view: pick a named experiment (the engine's
 // experimentList()) or build a custom sweep, run it on a pool of Web
 // Workers (www/experiments/runner.js), watch its charts fill in
-// (www/experiments/charts.js), download CSV / JSON / SVG / PNG, load a
+// (www/experiments/charts.js), download CSV (per point, per trial, paired
+// comparisons) / JSON / SVG / PNG, load a
 // results file, and open a point in the live view. Choices and limits come
 // from the engine's schema and experiment list; every value is checked by
 // the engine (through url-state.js's experiment reader, the same as a
@@ -33,6 +34,21 @@ function num(v, digits = 1) {
   if (v === null || v === undefined) return '—';
   return Number.isInteger(v) ? String(v) : v.toFixed(digits);
 }
+
+/** An interval {estimate, lo, hi} as "estimate [lo, hi]" (an end the engine could not compute as —). */
+function interval(i, digits = 1) {
+  return `${num(i?.estimate, digits)} [${num(i?.lo, digits)}, ${num(i?.hi, digits)}]`;
+}
+
+/** The downloads: button id → [kind, file suffix]. */
+const DOWNLOADS = {
+  'exp-csv': ['csv', '.csv'],
+  'exp-trials-csv': ['trials-csv', '.trials.csv'],
+  'exp-paired-csv': ['paired-csv', '.paired.csv'],
+  'exp-json': ['json', '.json'],
+  'exp-svg': ['svg', '.svg'],
+  'exp-png': ['png', '.png'],
+};
 
 export class ExperimentsView {
   /**
@@ -73,10 +89,7 @@ export class ExperimentsView {
     $('exp-run').addEventListener('click', () => this.run());
     $('exp-cancel').addEventListener('click', () => this.cancel());
     $('exp-chart').addEventListener('change', (e) => this.redraw(e.target.value));
-    $('exp-csv').addEventListener('click', () => this.save('csv'));
-    $('exp-json').addEventListener('click', () => this.save('json'));
-    $('exp-svg').addEventListener('click', () => this.save('svg'));
-    $('exp-png').addEventListener('click', () => this.save('png'));
+    for (const [id, [kind]] of Object.entries(DOWNLOADS)) $(id).addEventListener('click', () => this.save(kind));
     $('exp-load').addEventListener('change', async (e) => {
       const file = e.target.files?.[0];
       e.target.value = '';
@@ -184,7 +197,7 @@ export class ExperimentsView {
     const running = status === 'running';
     $('exp-run').disabled = running;
     $('exp-cancel').disabled = !running;
-    for (const id of ['exp-csv', 'exp-json', 'exp-svg', 'exp-png']) $(id).disabled = running || !this.result;
+    for (const id of Object.keys(DOWNLOADS)) $(id).disabled = running || !this.result;
   }
 
   /** Runs the current experiment; resolves to the result text, or null if it failed or was cancelled. */
@@ -206,6 +219,8 @@ export class ExperimentsView {
     $('exp-figure').replaceChildren();
     $('exp-table').tBodies[0].replaceChildren();
     $('exp-table').hidden = true;
+    $('exp-paired').tBodies[0].replaceChildren();
+    $('exp-paired-box').hidden = true;
     setText('exp-title', `${plan.experiment.title}: running…`);
     setText('exp-caption', '');
     const bar = $('exp-progress');
@@ -293,7 +308,7 @@ export class ExperimentsView {
     return [
       `${mode === 'excess' ? 'steps − optimal steps' : e.y.label}; seed ${s.seed}, ${s.trials} ${e.kind === 'targets' ? 'samples' : 'trials'} per point, preset ${s.preset ?? 'none'}; engine ${data.version}.`,
       mode === 'box' ? 'Boxes: quartiles; thick tick: median; ◇: mean; whiskers: the last values within 1.5 IQR; red numbers: capped trials (kept at the cap, never dropped).' : '',
-      mode === 'mean' || mode === 'excess' ? 'Bands and bars: t-based 95% confidence intervals of the mean.' : '',
+      mode === 'mean' || mode === 'excess' ? 'Bands and bars: 95% intervals of the mean (a seeded bootstrap, BCa with expanded tails: they stay within the trials\' range).' : '',
       bound ? `Grey dashes: the lower bound on the expected ${e.metric === 'excess' ? 'excess steps' : 'steps'} of any searcher.` : '',
       ...(mode !== 'excess' && mode !== 'hist' ? (e.references ?? []).map((r) => `×: ${r.label}.`) : []),
       e.note ? `Note: ${e.note}.` : '',
@@ -324,8 +339,7 @@ export class ExperimentsView {
     const body = $('exp-table').tBodies[0];
     const rows = data.points.map((p) => {
       const tr = document.createElement('tr');
-      const ci = `${num(p.mean)} [${num(p.ci_low)}, ${num(p.ci_high)}]`;
-      for (const v of [p.series, p.x, String(p.n), ci, `${num(p.median)} (${num(p.q1)}–${num(p.q3)})`, String(p.capped), num(p.lower_bound, 2)]) {
+      for (const v of [p.series, p.x, String(p.n), interval(p.mean), interval(p.median), String(p.capped), num(p.lower_bound, 2)]) {
         tr.insertCell().textContent = v;
       }
       const b = document.createElement('button');
@@ -339,6 +353,22 @@ export class ExperimentsView {
     body.replaceChildren(...rows);
     setText('exp-table-x', xName(data) || 'x');
     $('exp-table').hidden = false;
+    this.fillPaired(data);
+  }
+
+  /** The paired comparisons (the engine's, series − reference over the trials both have). */
+  fillPaired(data) {
+    const paired = data.paired ?? [];
+    const rows = paired.map((c) => {
+      const tr = document.createElement('tr');
+      for (const v of [c.series, c.reference, c.x, String(c.n), interval(c.difference), `${c.wins} / ${c.ties} / ${c.losses}`]) tr.insertCell().textContent = v;
+      return tr;
+    });
+    $('exp-paired').tBodies[0].replaceChildren(...rows);
+    setText('exp-paired-x', xName(data) || 'x');
+    const what = data.experiment.metric === 'excess' ? 'excess steps' : data.experiment.metric;
+    setText('exp-paired-summary', `Paired comparisons (${paired.length}): ${what}, series − reference, over the same trials`);
+    $('exp-paired-box').hidden = paired.length === 0;
   }
 
   /**
@@ -358,6 +388,8 @@ export class ExperimentsView {
     if (!r) throw new Error('no finished result to save');
     if (kind === 'json') return new Blob([r.text], { type: 'application/json' });
     if (kind === 'csv') return new Blob([this.engine.experimentCsv(r.text)], { type: 'text/csv' });
+    if (kind === 'trials-csv') return new Blob([this.engine.experimentTrialsCsv(r.text)], { type: 'text/csv' });
+    if (kind === 'paired-csv') return new Blob([this.engine.experimentPairedCsv(r.text)], { type: 'text/csv' });
     await this.drawing;
     if (!this.fig) throw new Error('no chart drawn');
     const svg = standaloneSvg(this.fig, r.data.experiment.title);
@@ -369,9 +401,10 @@ export class ExperimentsView {
     try {
       const blob = await this.exported(kind);
       const name = this.result.data.experiment.name;
-      download(blob, `${name}${kind === 'svg' || kind === 'png' ? `-${this.mode}` : ''}.${kind}`);
+      const suffix = Object.values(DOWNLOADS).find(([k]) => k === kind)[1];
+      download(blob, `${name}${kind === 'svg' || kind === 'png' ? `-${this.mode}` : ''}${suffix}`);
     } catch (err) {
-      showMessage(`Could not save ${kind.toUpperCase()}: ${err.message}`);
+      showMessage(`Could not save ${kind.replace('-', ' ').toUpperCase()}: ${err.message}`);
     }
   }
 

@@ -31,7 +31,7 @@
 //     lastRun()          { seconds, workers, units, name } of the last finished run
 //     workers()          the pool size; usePool(k) a pool of k workers
 //     load(text, name)   loads a results file's text (as the file input); resolves to true if loaded
-//     exported(kind)     resolves to the text of a download: csv | json | svg (png: its size in bytes)
+//     exported(kind)     resolves to the text of a download: csv | trials-csv | paired-csv | json | svg (png: its size in bytes)
 //     openPoint(index)   opens a point of the shown result in the live view (as a click)
 //     config(index)      that point's config
 

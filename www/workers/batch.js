@@ -73,15 +73,17 @@ export class BatchPanel {
 
   /** The engine's summary (CLI --json field names) as a table. */
   show(s, secs) {
-    const ci = ([lo, hi], mean, d = 1) => `${mean.toFixed(d)} [${lo.toFixed(d)}, ${hi.toFixed(d)}]`;
+    // An interval {estimate, lo, hi}; an end the engine could not compute (too few trials) is null.
+    const num = (v, d) => (Number.isFinite(v) ? v.toFixed(d) : '—');
+    const ci = (i, d = 1) => `${num(i.estimate, d)} [${num(i.lo, d)}, ${num(i.hi, d)}]`;
     const rows = [
       ['Trials', String(s.trials)],
-      ['Mean steps [95% CI]', ci(s.ci95_steps, s.mean_steps)],
-      ['Mean optimal', s.mean_optimal.toFixed(1)],
-      ['ASOO = mean(steps − optimal)', ci(s.ci95_asoo, s.asoo)],
-      ['Mean steps/optimal', Number.isFinite(s.mean_ratio) ? ci(s.ci95_ratio, s.mean_ratio, 2) : '—'],
+      ['Mean steps [95% interval]', ci(s.mean_steps)],
+      ['Mean optimal', num(s.mean_optimal.estimate, 1)],
+      ['ASOO = mean(steps − optimal)', ci(s.asoo)],
+      ['Mean steps/optimal', Number.isFinite(s.mean_ratio.estimate) ? ci(s.mean_ratio, 2) : '—'],
       ['Mean steps / mean optimal', s.steps_over_mean_optimal.toFixed(2)],
-      ['Median steps (q1–q3)', `${s.median_steps} (${s.q1_steps}–${s.q3_steps})`],
+      ['Median steps [95% interval] (q1–q3)', `${ci(s.median_steps)} (${s.q1_steps}–${s.q3_steps})`],
       ['Capped (not found)', String(s.capped)],
       ['Optimal = 0 (excluded from ratio)', String(s.zero_optimal)],
       ['Truncated rollouts', fmtInt(s.truncated_rollouts)],
