@@ -4,10 +4,11 @@
 //! a phase at a time and seeks back as one run does.
 
 use std::collections::BTreeMap;
+use torus_search::analysis::paired_runs::summarize;
 use torus_search::config::Config;
 use torus_search::run::batch::trial;
 use torus_search::run::episode::{Episode, Status, TimePoint};
-use torus_search::run::paired::{differences, paired_summary, paired_trial, PairError};
+use torus_search::run::paired::{differences, paired_trial, PairError};
 use torus_search::run::race::Race;
 use torus_search::searchers::phase::PhaseKind;
 use wasm_bindgen_test::wasm_bindgen_test;
@@ -57,17 +58,20 @@ fn batch_trials_of_both_sides_give_a_paired_summary() {
     let pairs: Vec<_> = (0..24)
         .map(|i| paired_trial(&base(), &levy, i).unwrap())
         .collect();
-    let s = paired_summary(&pairs).unwrap();
+    let s = summarize(&pairs).unwrap();
     let diff: Vec<f64> = pairs
         .iter()
         .map(|(a, b)| a.steps as f64 - b.steps as f64)
         .collect();
     let mean = diff.iter().sum::<f64>() / 24.0;
-    assert!((s.mean_difference - mean).abs() < 1e-9);
+    assert!((s.difference.estimate - mean).abs() < 1e-9);
     assert_eq!(s.a_wins + s.ties + s.b_wins, 24);
-    assert_eq!(s.a_wins, diff.iter().filter(|&&d| d < 0.0).count());
-    assert!(s.ci[0] <= mean && mean <= s.ci[1], "{s:?}");
-    assert!(s.ci[1] > s.ci[0], "distinct sides vary: {s:?}");
+    assert_eq!(s.a_wins as usize, diff.iter().filter(|&&d| d < 0.0).count());
+    assert!(s.difference.covers(mean), "{s:?}");
+    assert!(
+        s.difference.hi > s.difference.lo,
+        "distinct sides vary: {s:?}"
+    );
     // Another seed draws other targets: not paired, and the error says why.
     let e = paired_trial(&base(), &base().with(&[("seed", "22")]), 0).unwrap_err();
     assert!(matches!(&e, PairError::Unpaired { index: 0, .. }), "{e}");

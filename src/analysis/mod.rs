@@ -7,6 +7,7 @@ pub mod interval;
 pub mod median;
 pub mod normal;
 pub mod paired;
+pub mod paired_runs;
 pub mod quantiles;
 pub mod report;
 pub mod stats;

@@ -3,8 +3,9 @@
 //! two configurations. Thin: every call forwards to the core.
 
 use super::{config_from_js, err, from_js, to_js, RaceHandle};
+use crate::analysis::paired_runs::summarize;
 use crate::run::episode::{TimePoint, TrialResult, TRIAL_FIELDS};
-use crate::run::paired::{differences, paired_summary, paired_trial};
+use crate::run::paired::{differences, paired_trial};
 use crate::run::timeline::{point_from_json, TimelineMemory};
 use crate::searchers::phase::{PhaseKind, PhaseStep};
 use crate::searchers::tree_export::{TreeExport, TreeQuery};
@@ -228,8 +229,8 @@ pub fn run_paired_trial(
 }
 
 /// The paired summary of trials given as concatenated `runPairedTrial`
-/// results: `{ trials, mean_a, mean_b, mean_difference (A − B steps),
-/// sd_difference, ci: [lo, hi], level, method, a_wins, ties, b_wins,
+/// results: `{ trials, mean_a, mean_b, difference: { estimate, lo, hi,
+/// level, method } (A − B steps), sd_difference, a_wins, ties, b_wins,
 /// found_a, found_b }`.
 ///
 /// # Errors
@@ -246,7 +247,7 @@ pub fn summarize_paired(flat: &[f64]) -> Result<JsValue, JsError> {
         })
         .collect();
     match pairs {
-        Some(p) if !p.is_empty() && flat.len() % pair == 0 => to_js(&paired_summary(&p).map_err(err)?),
+        Some(p) if !p.is_empty() && flat.len() % pair == 0 => to_js(&summarize(&p).map_err(err)?),
         _ => Err(JsError::new(&format!(
             "paired trials must be a non-empty list of {pair}-number pairs of results, got {} numbers",
             flat.len()
