@@ -19,6 +19,7 @@
 mod defs;
 mod output;
 mod plan;
+pub mod provenance;
 mod read;
 mod result;
 mod run;
@@ -34,6 +35,7 @@ pub use chart::svg;
 pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
 pub use output::CSV_HEADER;
 pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
+pub use provenance::Provenance;
 pub use read::{merge, read, MergeError};
 pub use result::{ResultError, ResultSet};
 pub use result::{FORMAT, FORMAT_VERSION};

@@ -5,6 +5,7 @@
 //! Non-finite numbers (a mean without rows, an unknown bound) are `null`.
 
 use super::plan::{Header, PointView};
+use super::provenance::Provenance;
 use super::result::{ResultSet, FORMAT, FORMAT_VERSION};
 use super::run::{Row, ROW_FIELDS};
 use super::spec::Spec;
@@ -45,6 +46,8 @@ struct Out<'a> {
     format: &'static str,
     format_version: u64,
     version: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    provenance: Option<&'a Provenance>,
     spec: &'a Spec,
     experiment: &'a Header,
     units: Units,
@@ -54,8 +57,14 @@ struct Out<'a> {
 }
 
 impl ResultSet {
-    /// The result JSON (compact, one line).
+    /// The result JSON (compact, one line), without provenance: the bytes
+    /// that compare equal (shards merged and one run; the page and the CLI).
     pub fn to_json(&self) -> String {
+        self.json_with(None)
+    }
+
+    /// The result JSON, with `provenance` after `version` when given.
+    pub(super) fn json_with(&self, provenance: Option<&Provenance>) -> String {
         let points = self
             .plan
             .point_views()
@@ -67,6 +76,7 @@ impl ResultSet {
             format: FORMAT,
             format_version: FORMAT_VERSION,
             version: env!("CARGO_PKG_VERSION"),
+            provenance,
             spec: &self.plan.spec,
             experiment: &self.plan.header,
             units: Units {

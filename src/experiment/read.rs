@@ -94,7 +94,13 @@ fn unsigned(v: &Value, name: &str) -> Result<u64, ResultError> {
 /// statistic that disagrees with the spec and rows, a bad unit range, or a
 /// bad, misplaced or repeated row.
 pub fn read(text: &str) -> Result<ResultSet, ResultError> {
-    let v: Value = serde_json::from_str(text).map_err(|e| ResultError::Json(e.to_string()))?;
+    let v: Value = serde_json::from_str(text).map_err(|e| {
+        ResultError::Json(if e.is_eof() {
+            format!("{e}: the text ends early, so the file is truncated (an interrupted write or copy?)")
+        } else {
+            e.to_string()
+        })
+    })?;
     let obj = v
         .as_object()
         .ok_or_else(|| ResultError::Foreign(format!("the top level is {}", shown(&v))))?;
