@@ -63,7 +63,9 @@ pub fn watched(dir: &Path) -> Vec<PathBuf> {
         for e in entries.flatten() {
             let name = e.file_name();
             let name = name.to_string_lossy();
-            if !SKIP.contains(&name.as_ref()) && !(sub == dir && name == "www") {
+            // www is walked on its own, for its generated pkg and vendor.
+            let www = sub == dir && name == "www";
+            if !(SKIP.contains(&name.as_ref()) || www) {
                 out.push(e.path());
             }
         }

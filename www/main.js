@@ -5,7 +5,7 @@ import { loadEngine, engineModule, schema as engineSchema } from './shared/engin
 import { readPage, raceOptions } from './shared/url-state.js';
 import { PageViews } from './shared/views.js';
 import { installTestHook } from './shared/test-hook.js';
-import { $, setText, showMessage, showFatal } from './shared/ui.js';
+import { $, showBuild, showMessage, showFatal } from './shared/ui.js';
 import { Controller } from './live/controller.js';
 import { SearchSession } from './live/search-session.js';
 import { LiveState } from './live/live-state.js';
@@ -27,7 +27,7 @@ async function boot() {
   const schema = engineSchema();
   const races = raceOptions(engine, schema);
   const start = readPage(engine, schema, location.search, races);
-  setText('version', `v${engine.version()}`);
+  showBuild(engine);
   const controller = new Controller({ session: new SearchSession(engineModule()) });
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });

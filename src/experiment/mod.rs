@@ -30,11 +30,14 @@ mod summary;
 mod chart;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use chart::svg;
+pub use chart::{png_stamped, svg, svg_stamped};
 
-pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
+pub use defs::{
+    series_style, Chart, Definition, Kind, Marker, Metric, SeriesStyle, COMMON_DEFAULTS,
+    DEFINITIONS, PALETTE,
+};
 pub use output::CSV_HEADER;
-pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
+pub use plan::{common_base, Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
 pub use provenance::Provenance;
 pub use read::{merge, read, MergeError};
 pub use result::{ResultError, ResultSet};

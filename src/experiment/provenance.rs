@@ -301,10 +301,41 @@ impl ResultSet {
     }
 }
 
+/// The colour of a chart's caption, which alone holds its provenance: in
+/// an SVG no other text has it, so [`strip`] can take the caption out.
+pub const CAPTION_RGB: [u8; 3] = [0x59, 0x59, 0x59];
+
+/// An SVG without its caption's `<text>` elements (those in [`CAPTION_RGB`]).
+fn strip_svg(text: &str) -> String {
+    let fill = format!(
+        "fill=\"#{:02X}{:02X}{:02X}\"",
+        CAPTION_RGB[0], CAPTION_RGB[1], CAPTION_RGB[2]
+    );
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("<text") {
+        out.push_str(&rest[..at]);
+        let end = rest[at..]
+            .find("</text>")
+            .map_or(rest.len(), |e| at + e + "</text>".len());
+        let element = &rest[at..end];
+        let open = &element[..element.find('>').unwrap_or(element.len())];
+        if !open.contains(&fill) {
+            out.push_str(element);
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// The text without its provenance: a result JSON without its top-level
-/// `provenance` member, a CSV without its leading `#` lines. Other text is
-/// returned as it is.
+/// `provenance` member, a CSV without its leading `#` lines, a chart's SVG
+/// without its caption. Other text is returned as it is.
 pub fn strip(text: &str) -> String {
+    if text.starts_with("<svg") {
+        return strip_svg(text);
+    }
     if text.starts_with('#') {
         return text
             .lines()
