@@ -33,7 +33,11 @@ fn problem(name: &str) -> Option<String> {
     let stem = name.trim_end_matches(".json");
     match std::fs::read_to_string(dir.join(format!("{stem}.csv"))) {
         Ok(csv) if csv == set.stamped_csv(&p) => {}
-        Ok(_) => return Some(format!("{stem}.csv: not the CSV this build writes from {name}")),
+        Ok(_) => {
+            return Some(format!(
+                "{stem}.csv: not the CSV this build writes from {name}"
+            ))
+        }
         Err(e) => return Some(format!("{stem}.csv: {e}")),
     }
     if !dir.join(format!("{stem}.svg")).exists() {
@@ -64,10 +68,9 @@ fn every_committed_result_reloads_with_this_build() {
 
 #[test]
 fn the_figures_script_makes_every_named_experiment() {
-    let script = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/figures.sh"),
-    )
-    .unwrap();
+    let script =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/figures.sh"))
+            .unwrap();
     for d in DEFINITIONS.iter().filter(|d| !d.is_custom()) {
         assert!(
             script.contains(&format!("[{}]=", d.name)),

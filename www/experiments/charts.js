@@ -363,26 +363,35 @@ function textWidth(text, size) {
   return measureCtx.measureText(text).width;
 }
 
-/** `text` in lines no wider than `max` px at `size`, broken at spaces (a long word is cut). */
+/** `text` in lines no wider than `max` px at `size`, broken at spaces; a word longer than a line (a URL) fills each line it needs. */
 function wrapLines(text, max, size) {
   const lines = [];
   let line = '';
   for (const word of String(text).split(' ')) {
     const joined = line ? `${line} ${word}` : word;
-    if (!line || textWidth(joined, size) <= max) line = joined;
-    else {
+    if (textWidth(joined, size) <= max) {
+      line = joined;
+      continue;
+    }
+    if (textWidth(word, size) <= max) {
       lines.push(line);
       line = word;
+      continue;
     }
-    while (line.length > 1 && textWidth(line, size) > max) {
-      let k = line.length - 1;
-      while (k > 1 && textWidth(line.slice(0, k), size) > max) k--;
-      lines.push(line.slice(0, k));
-      line = line.slice(k);
+    // Too long for any line: character by character from where the line is.
+    let rest = line ? ' ' : '';
+    for (const ch of word) {
+      if (textWidth(line + rest + ch, size) > max && (line + rest).trim()) {
+        lines.push(line + rest.trimEnd());
+        line = '';
+        rest = '';
+      }
+      rest += ch;
     }
+    line += rest;
   }
   lines.push(line);
-  return lines;
+  return lines.filter((l, i) => l || i === 0);
 }
 
 /**
@@ -416,8 +425,8 @@ export function standaloneSvg(fig, title) {
   const h = Number(plotSvg.getAttribute('height'));
   const legend = [];
   const color = typeof fig.scale === 'function' ? fig.scale('color') : null;
-  const symbol = typeof fig.scale === 'function' ? fig.scale('symbol') : null;
-  if (color && color.type === 'ordinal') color.domain.forEach((d, i) => legend.push([String(d), color.range[i % color.range.length], symbol?.range?.[i] ?? null]));
+  // Series i is drawn in the engine's style i: its colour and marker.
+  if (color && color.type === 'ordinal') color.domain.forEach((d, i) => legend.push([String(d), styleOf(i).colour, styleOf(i).marker]));
   const ramp = fig.tagName.toLowerCase() === 'figure' ? fig.querySelector('svg[class$="-ramp"]') : null;
   // Legend items in rows: a row ends before an item would cross the right edge.
   const rows = [[]];
