@@ -30,7 +30,7 @@ help:
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
-	@echo "make figures every experiment's figure into docs/figures/ (about 20 min on 2 cores)"
+	@echo "make figures every experiment's figure into docs/figures/ (about 30 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
 setup:

@@ -123,7 +123,13 @@ fn experiment_files_carry_provenance_outside_the_compared_bytes() {
     let dir = temp_dir("files");
     let d = dir.to_str().unwrap();
     let args: Vec<&str> = SMALL.iter().copied().chain(["--out", d]).collect();
-    ok(&args);
+    let (out, _) = ok(&args);
+    assert!(
+        out.starts_with(&format!(
+            "custom: seed 1, preset none, 2 points × 4 trials; torus-search {VERSION}, commit "
+        )),
+        "{out}"
+    );
     let command = with_bin(&args);
     let json = std::fs::read_to_string(dir.join("custom.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();

@@ -70,6 +70,14 @@ pub(super) fn param_args(mut cmd: Command, skip: &[&str], defaults: Defaults<'_>
     cmd
 }
 
+/// This process's provenance: this build, now, and its command line.
+pub(super) fn invocation() -> crate::experiment::Provenance {
+    let args: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    crate::experiment::Provenance::now(crate::experiment::provenance::shell_line(&args))
+}
+
 pub(super) fn preset_arg(default: &str) -> Arg {
     Arg::new("preset")
         .long("preset")

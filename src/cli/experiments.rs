@@ -1,10 +1,10 @@
 //! `torus-search experiment` and `merge`: named experiments, shards, result files.
 
 use super::args::{
-    flag_text, param_args, preset, preset_arg, thread_pool, threads_arg, with_progress, Defaults,
+    flag_text, invocation, param_args, preset, preset_arg, thread_pool, threads_arg, with_progress,
+    Defaults,
 };
 use super::dry_run::dry_run;
-use super::invocation;
 use super::usage::{flag, usage, UsageError};
 use crate::config::{self, TRIALS};
 use crate::experiment::provenance::{self, Provenance};
@@ -323,6 +323,14 @@ pub(super) fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
         return dry_run(m, &plan, from, to, threads, &pool);
     }
     let dir = m.get_one::<String>("out").map_or(".", String::as_str);
+    out!(
+        "{name}: seed {}, preset {}, {} points × {} trials; {} (--dry-run prints each series' configuration)",
+        plan.spec.seed,
+        plan.spec.preset.map_or("none", |p| p.name()),
+        plan.points.len(),
+        plan.trials(),
+        provenance::this_build()
+    );
     let t0 = Instant::now();
     let rows = with_progress(&pool, from..to, "trials", |u| {
         experiment::run_unit(&plan, u, None)

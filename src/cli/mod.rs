@@ -49,14 +49,6 @@ fn command() -> Command {
         .subcommand(bench_command())
 }
 
-/// This process's provenance: this build, now, and its command line.
-fn invocation() -> crate::experiment::Provenance {
-    let args: Vec<String> = std::env::args_os()
-        .map(|a| a.to_string_lossy().into_owned())
-        .collect();
-    crate::experiment::Provenance::now(crate::experiment::provenance::shell_line(&args))
-}
-
 /// Runs the CLI and returns the process exit code.
 pub fn main() -> i32 {
     let matches = match command().try_get_matches() {

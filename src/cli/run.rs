@@ -1,9 +1,9 @@
 //! `torus-search run`: a batch of trials, one episode's moves, exact means.
 
 use super::args::{
-    build_config, param_args, preset, preset_arg, thread_pool, threads_arg, with_progress, Defaults,
+    build_config, invocation, param_args, preset, preset_arg, thread_pool, threads_arg,
+    with_progress, Defaults,
 };
-use super::invocation;
 use super::usage::{usage, UsageError};
 use crate::analysis::bound;
 use crate::analysis::exact;

@@ -1,8 +1,8 @@
 //! Axes shared by the box and line charts: the y range and scale, the mesh
 //! and its labels, tick text.
 
+use super::style::Fallible;
 use super::text::FONT;
-use super::Fallible;
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;

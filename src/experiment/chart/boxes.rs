@@ -6,8 +6,8 @@
 use super::axes::{axis_labels, log_ticks, y_range};
 use super::legend::{rgb, Mark};
 use super::marks::marker;
+use super::style::{Fallible, BOUND};
 use super::text::{width, wrap, FONT};
-use super::{Fallible, BOUND};
 use crate::experiment::defs::series_style;
 use crate::experiment::plan::Point;
 use crate::experiment::result::ResultSet;

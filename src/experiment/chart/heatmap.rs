@@ -1,7 +1,7 @@
 //! Heat maps: one histogram of sampled targets per point.
 
+use super::style::{Fallible, BOUND};
 use super::text::FONT;
-use super::{Fallible, BOUND};
 use crate::display::render::Palette;
 use crate::experiment::result::ResultSet;
 use crate::experiment::summary::PointStats;
@@ -68,7 +68,7 @@ where
     }
     area.draw(&Text::new(
         "colour: samples per cell on a square-root scale (white: none); cells 1-based (x, y), y downward",
-        (20, area.dim_in_pixel().1 as i32 - 6),
+        (20, area.dim_in_pixel().1 as i32 - 16),
         (FONT, 12).into_font().color(&BOUND),
     ))?;
     Ok(())

@@ -3,8 +3,8 @@
 //! to hold it).
 
 use super::marks::{dashed, marker};
+use super::style::Fallible;
 use super::text::{wrap, FONT};
-use super::Fallible;
 use crate::experiment::defs::SeriesStyle;
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -5,8 +5,8 @@
 use super::axes::{axis_labels, log_ticks, short_label, y_range};
 use super::legend::{rgb, Mark};
 use super::marks::{dashed, marker};
+use super::style::{Fallible, BOUND};
 use super::text::FONT;
-use super::{Fallible, BOUND};
 use crate::experiment::defs::series_style;
 use crate::experiment::result::ResultSet;
 use crate::experiment::summary::PointStats;

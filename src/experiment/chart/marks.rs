@@ -1,6 +1,6 @@
 //! A series' marks, drawn in pixels: its marker shape and its dashed line.
 
-use super::Fallible;
+use super::style::Fallible;
 use crate::experiment::defs::Marker;
 use plotters::coord::Shift;
 use plotters::prelude::*;

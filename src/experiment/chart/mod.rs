@@ -25,6 +25,7 @@ mod legend;
 mod lines;
 mod marks;
 mod scaled;
+mod style;
 mod text;
 
 use super::defs::{Chart, Kind};
@@ -34,12 +35,9 @@ use super::summary::PointStats;
 use legend::Mark;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use style::{Fallible, BOUND};
 use text::{wrap, FONT};
 
-pub(super) type Fallible = Result<(), Box<dyn std::error::Error>>;
-
-/// The colour of the lower bound and of secondary text.
-pub(super) const BOUND: RGBColor = RGBColor(40, 40, 40);
 const NOTE_SIZE: f64 = 13.0;
 const NOTE_LINE: u32 = 18;
 /// Above the plot: the title.
@@ -113,7 +111,7 @@ impl Frame {
         };
         let (width, body) = if h.chart == Chart::Heatmap {
             let (cols, rows) = heatmap::grid(result.plan.points.len());
-            (cols * 300 + 40, rows * 320 + 50)
+            (cols * 300 + 40, rows * 320 + 60)
         } else {
             let boxes = result.plan.points.len() as u32;
             let width = 1000u32.max(360 + 20 * boxes) + legend::WIDTH;
