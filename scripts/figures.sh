@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
-# Regenerate every named experiment's figure into docs/figures/ (svg, csv,
-# json) at a trial count that fits in minutes on a 2-core machine.
+# Regenerate every named experiment's files into docs/figures/ (json, csv,
+# svg, png, each with its provenance) at trial counts that fit in `make
+# figures` on a 2-core machine. tests/committed_results.rs checks that every
+# committed result reloads with the current build: when a change makes them
+# stale, this script is how they are made again.
 # Usage: scripts/figures.sh [NAME ...]   (default: all of them)
 #
-# Trials per point under the default preset (paper-code), and the wall time
-# of `make figures` on this project's 2-core machine (release build, 2
-# threads, the machine shared with other work; MCTS costs are heavy-tailed,
-# so another seed can take twice as long): see the README's "Experiments"
-# section for the measured times. The paper used 10^3 trials per point; for
-# that, shard the runs over a cluster (docs/cluster.md). TRIALS_SCALE=k
-# multiplies every count.
+# Trials per point under the default preset (paper-code). The script prints
+# each figure's time and the total (docs/performance.md has the measured
+# times; MCTS costs are heavy-tailed, so another seed can take twice as
+# long). The paper used 10^3 trials per point; for that, shard the runs over
+# a cluster (docs/cluster.md). TRIALS_SCALE=k multiplies every count;
+# FIGURES_OUT=DIR writes elsewhere than docs/figures.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-out=docs/figures
+out=${FIGURES_OUT:-docs/figures}
 scale=${TRIALS_SCALE:-1}
 declare -A trials=(
   [priors]=10000 [delta]=100 [loops]=30 [decision-time]=20 [uniform]=50
@@ -28,6 +30,7 @@ done
 cargo build --release --quiet
 bin=target/release/torus-search
 mkdir -p "$out"
+begin=$SECONDS
 for name in "${names[@]}"; do
   t=$(( ${trials[$name]} * scale ))
   printf '\n==== %s (%s trials per point) ====\n' "$name" "$t"
@@ -35,3 +38,4 @@ for name in "${names[@]}"; do
   "$bin" experiment "$name" --trials "$t" --seed 1 --out "$out"
   echo "$name: $t trials per point in $((SECONDS - start)) s"
 done
+printf '\n%s figures in %s s\n' "${#names[@]}" "$((SECONDS - begin))"

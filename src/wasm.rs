@@ -14,6 +14,7 @@ use crate::analysis::stats::Summary;
 use crate::config::{self, Config};
 use crate::display::render::{Alpha, Colorizer, Palette, ScaleKind};
 use crate::display::view::{self, FrameBuilder, FrameRequest};
+use crate::experiment::provenance::{self, CsvTable, Provenance};
 use crate::experiment::{self, Plan, ResultSet, Spec};
 use crate::game::prior;
 use crate::run::episode::{Episode, TrialResult, TRIAL_FIELDS};
@@ -91,6 +92,49 @@ fn performance_now() -> f64 {
 #[wasm_bindgen]
 pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
+}
+
+/// The build, for the page's footer and its exports: `{ version, commit,
+/// dirty, label }` (commit: 40 hex digits or "unknown"; dirty: true, false
+/// or null; label: `torus-search 0.1.0, commit 0123456789ab`).
+#[wasm_bindgen(js_name = buildInfo)]
+pub fn build_info() -> Result<JsValue, JsError> {
+    #[derive(serde::Serialize)]
+    struct Build {
+        version: &'static str,
+        commit: &'static str,
+        dirty: Option<bool>,
+        label: String,
+    }
+    to_js(&Build {
+        version: provenance::VERSION,
+        commit: provenance::COMMIT,
+        dirty: provenance::dirty(),
+        label: provenance::this_build(),
+    })
+}
+
+/// This build's provenance for an output made now on the page: the date
+/// from the host's clock (UTC, to the second), the command the page's URL.
+fn page_provenance() -> Provenance {
+    let iso = String::from(js_sys::Date::new_0().to_iso_string());
+    let date = format!("{}Z", iso.get(..19).unwrap_or(&iso));
+    let href = js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("location"))
+        .and_then(|l| js_sys::Reflect::get(&l, &JsValue::from_str("href")))
+        .ok()
+        .and_then(|h| h.as_string())
+        .unwrap_or_else(|| "the page".into());
+    Provenance::new(date, href)
+}
+
+/// How series `i` of a chart is drawn, for `i` in `0..count`: `[{ colour
+/// ("#rrggbb"), dash (on, off, … pixels), marker }]`, the CLI's charts' styles.
+#[wasm_bindgen(js_name = seriesStyles)]
+pub fn series_styles(count: u32) -> Result<JsValue, JsError> {
+    let styles: Vec<_> = (0..count.min(1000) as usize)
+        .map(experiment::series_style)
+        .collect();
+    to_js(&styles)
 }
 
 /// The text of the last Rust panic, if any (read after a `RuntimeError`).
@@ -434,38 +478,47 @@ pub fn experiment_run(spec: JsValue, from: f64, to: f64) -> Result<Vec<f64>, JsE
 }
 
 /// The result JSON text of `spec` with the rows given (flattened, any order,
-/// any subset: a partial set gives partial statistics). With every row it is
-/// byte for byte the CLI's `<name>.json`.
+/// any subset: a partial set gives partial statistics), with this page's
+/// provenance (now, the page's URL). With every row it is byte for byte the
+/// CLI's `<name>.json` but for the provenance (`provenance::strip`).
 #[wasm_bindgen(js_name = experimentResult)]
 pub fn experiment_result(spec: JsValue, rows: &[f64]) -> Result<String, JsError> {
     let plan = plan_from_js(spec)?;
-    Ok(ResultSet::from_flat(plan, rows).map_err(err)?.to_json())
+    Ok(ResultSet::from_flat(plan, rows)
+        .map_err(err)?
+        .stamped_json(&page_provenance()))
 }
 
-/// The per-point CSV of a result JSON text.
+/// The per-point CSV of a result JSON text, after the `#` lines of the
+/// result's provenance (none for a file without one).
 #[wasm_bindgen(js_name = experimentCsv)]
 pub fn experiment_csv(result: &str) -> Result<String, JsError> {
-    Ok(experiment::read(result).map_err(err)?.csv())
+    provenance::csv_of_result(result, CsvTable::Points).map_err(err)
 }
 
 /// The per-trial CSV of a result JSON text (the CLI's `<name>.trials.csv`).
 #[wasm_bindgen(js_name = experimentTrialsCsv)]
 pub fn experiment_trials_csv(result: &str) -> Result<String, JsError> {
-    Ok(experiment::read(result).map_err(err)?.trials_csv())
+    provenance::csv_of_result(result, CsvTable::Trials).map_err(err)
 }
 
 /// The paired comparisons' CSV of a result JSON text (the CLI's
 /// `<name>.paired.csv`).
 #[wasm_bindgen(js_name = experimentPairedCsv)]
 pub fn experiment_paired_csv(result: &str) -> Result<String, JsError> {
-    Ok(experiment::read(result).map_err(err)?.paired_csv())
+    provenance::csv_of_result(result, CsvTable::Paired).map_err(err)
 }
 
 /// Reads and checks a result JSON text (the page's or the CLI's) and returns
-/// it as an object; a foreign or damaged file is an error saying what is wrong.
+/// it as an object, with its provenance; a foreign or damaged file is an
+/// error saying what is wrong.
 #[wasm_bindgen(js_name = experimentRead)]
 pub fn experiment_read(text: &str) -> Result<JsValue, JsError> {
-    let (_, json) = experiment::read_with_json(text).map_err(err)?;
+    let (set, prov) = provenance::read_stamped(text).map_err(err)?;
+    let json = match prov {
+        Some(p) => set.stamped_json(&p),
+        None => set.to_json(),
+    };
     let value: serde_json::Value =
         serde_json::from_str(&json).map_err(|e| JsError::new(&e.to_string()))?;
     to_js(&value)

@@ -429,26 +429,54 @@ fn experiments_run_split_and_match_the_core() {
         .unwrap();
     let p = Plan::from_spec_text(spec).unwrap();
     let core_rows = core::run_units(&p, 0, 6).unwrap();
+    // The page's result is the core's bytes with the page's provenance.
     let core = ResultSet::new(p, 0, 6, core_rows).unwrap();
-    assert_eq!(text, core.to_json());
+    assert_eq!(
+        torus_search::experiment::provenance::strip(&text),
+        core.to_json()
+    );
+    let (_, prov) = torus_search::experiment::provenance::read_stamped(&text).unwrap();
+    let prov = prov.expect("the page's result carries its provenance");
+    assert_eq!(prov.commit, torus_search::experiment::provenance::COMMIT);
+    assert!(torus_search::experiment::provenance::is_utc_date(
+        &prov.date
+    ));
+    assert!(prov.command.starts_with("http"), "{}", prov.command);
     let csv = facade::experiment_csv(&text)
         .map_err(JsValue::from)
         .unwrap();
-    assert_eq!(csv.lines().count(), 3);
-    // The per-trial and paired CSVs are the core's, from the result text.
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 3);
+    assert!(csv.contains(&format!("\n# date: {}\n", prov.date)));
+    // The per-trial and paired CSVs are the core's, from the result text,
+    // after the same provenance lines.
+    let strip = torus_search::experiment::provenance::strip;
     let trials = facade::experiment_trials_csv(&text)
         .map_err(JsValue::from)
         .unwrap();
-    assert_eq!((trials.lines().count(), &trials), (7, &core.trials_csv()));
+    assert!(trials.contains(&format!("\n# date: {}\n", prov.date)));
+    assert_eq!(strip(&trials), core.trials_csv());
+    assert_eq!(strip(&trials).lines().count(), 7);
     let paired = facade::experiment_paired_csv(&text)
         .map_err(JsValue::from)
         .unwrap();
-    assert_eq!(paired, core.paired_csv());
+    assert_eq!(strip(&paired), core.paired_csv());
     assert!(facade::experiment_trials_csv("{").is_err());
     let read = facade::experiment_read(&text)
         .map_err(JsValue::from)
         .unwrap();
     assert_eq!(js_sys::Array::from(&get(&read, "rows")).length(), 6);
+    assert_eq!(
+        get(&get(&read, "provenance"), "date").as_string(),
+        Some(prov.date.clone())
+    );
+    let build = facade::build_info().map_err(JsValue::from).unwrap();
+    assert_eq!(get(&build, "commit").as_string().unwrap(), prov.commit);
+    let styles = js_sys::Array::from(&facade::series_styles(10).map_err(JsValue::from).unwrap());
+    assert_eq!(styles.length(), 10);
+    assert_eq!(
+        get(&styles.get(0), "colour").as_string().unwrap(),
+        "#3f90da"
+    );
     // Bad input is an error with a message, never a panic.
     let e = facade::experiment_plan(js(r#"{"name":"nope"}"#)).unwrap_err();
     assert!(message(e).starts_with("experiment must be one of priors"));

@@ -5,7 +5,7 @@ import { loadEngine, engineModule, schema as engineSchema } from './shared/engin
 import { readPage, raceOptions } from './shared/url-state.js';
 import { PageViews } from './shared/views.js';
 import { installTestHook } from './shared/test-hook.js';
-import { $, setText, showFatal } from './shared/ui.js';
+import { $, showBuild, showFatal } from './shared/ui.js';
 import { Controller } from './live/controller.js';
 import { SearchSession } from './live/search-session.js';
 import { LiveState } from './live/live-state.js';
@@ -29,7 +29,7 @@ async function boot() {
   const races = raceOptions(engine, schema);
   const start = readPage(engine, schema, location.search, races);
   const autoplay = start.view.autoplay && autoplayAllowed(location.search); // (reduced motion: a Play button)
-  setText('version', `v${engine.version()}`);
+  showBuild(engine);
   const controller = new Controller({ session: new SearchSession(engineModule()) });
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });

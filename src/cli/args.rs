@@ -11,17 +11,44 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-/// One flag per schema parameter (`skip` names keys a command handles itself).
-pub(super) fn param_args(mut cmd: Command, skip: &[&str]) -> Command {
-    for p in config::params()
+/// Where a command's defaults come from, for its help: the schema's, or a
+/// base configuration (`from` says what set a value that differs from the
+/// schema's, e.g. "the paper-code preset").
+pub(super) enum Defaults<'a> {
+    /// The schema's defaults (`run`).
+    Schema,
+    /// The values a command starts from, and what set them.
+    Base(&'a Config, &'a dyn Fn(&str) -> String),
+}
+
+/// A parameter value as help shows it: on/off, none, or its text.
+fn shown_value(p: &Param, text: &str) -> String {
+    match p.kind {
+        ParamKind::Bool => if text == "1" { "on" } else { "off" }.to_string(),
+        _ if text.is_empty() => "none".to_string(),
+        _ => text.to_string(),
+    }
+}
+
+/// One flag per schema parameter (`skip` names keys a command handles
+/// itself), each with its allowed values and the default the command uses.
+pub(super) fn param_args(mut cmd: Command, skip: &[&str], defaults: Defaults<'_>) -> Command {
+    for e in config::params()
         .iter()
-        .map(|e| e.param())
-        .filter(|p| !skip.contains(&p.key))
+        .filter(|e| !skip.contains(&e.param().key))
     {
-        let default = match p.kind {
-            ParamKind::Bool => "off".to_string(),
-            _ if p.default.text().is_empty() => "none".to_string(),
-            _ => p.default.text(),
+        let p = e.param();
+        let schema = shown_value(p, &p.default.text());
+        let default = match &defaults {
+            Defaults::Schema => schema,
+            Defaults::Base(base, from) => {
+                let used = shown_value(p, &e.value(base).text());
+                if used == schema {
+                    used
+                } else {
+                    format!("{used}, from {}; the schema's: {schema}", from(p.key))
+                }
+            }
         };
         let help = match p.kind {
             ParamKind::Bool => format!("{} [default: {default}]", p.help),
@@ -41,6 +68,14 @@ pub(super) fn param_args(mut cmd: Command, skip: &[&str]) -> Command {
         cmd = cmd.arg(arg);
     }
     cmd
+}
+
+/// This process's provenance: this build, now, and its command line.
+pub(super) fn invocation() -> crate::experiment::Provenance {
+    let args: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    crate::experiment::Provenance::now(crate::experiment::provenance::shell_line(&args))
 }
 
 pub(super) fn preset_arg(default: &str) -> Arg {

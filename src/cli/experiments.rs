@@ -1,10 +1,13 @@
 //! `torus-search experiment` and `merge`: named experiments, shards, result files.
 
 use super::args::{
-    flag_text, param_args, preset, preset_arg, thread_pool, threads_arg, with_progress,
+    flag_text, invocation, param_args, preset, preset_arg, thread_pool, threads_arg, with_progress,
+    Defaults,
 };
-use super::usage::{usage, UsageError};
+use super::dry_run::dry_run;
+use super::usage::{flag, usage, UsageError};
 use crate::config::{self, TRIALS};
+use crate::experiment::provenance::{self, Provenance};
 use crate::experiment::{self, Plan, ResultSet, Shard, Spec, SpecError};
 use clap::{Arg, ArgAction, ArgMatches, Command};
 use std::time::Instant;
@@ -20,7 +23,11 @@ pub(super) fn experiment_command() -> Command {
         .after_help("Every point keeps the seed: trial i of each point uses the same random streams. \
 With --shard i/n only DIR/<name>.shard-i-of-n.json is written; `torus-search merge` joins the shards \
 into the files a single run writes, byte for byte (docs/cluster.md). decision-time (and any --ms) \
-budgets decisions by the clock: those results depend on the machine and its load.")
+budgets decisions by the clock: those results depend on the machine and its load.\n\n\
+The defaults shown are what every experiment starts from: the schema's, then the preset (paper-code unless \
+--preset says otherwise), then the paper's setting (N = 40, r_v = 1, start 1,1, L = 100). Each experiment then \
+sets its own values and its series' (known-n20: N = 20, ...); the flags given override them, and --dry-run \
+prints every series' configuration.")
         .arg(
             Arg::new("name")
                 .value_name("NAME")
@@ -31,6 +38,26 @@ budgets decisions by the clock: those results depend on the machine and its load
                 .long("list")
                 .action(ArgAction::SetTrue)
                 .help("list the experiments with what each shows, and exit"),
+        )
+        .arg(
+            Arg::new("json")
+                .long("json")
+                .action(ArgAction::SetTrue)
+                .requires("list")
+                .help("with --list: print the list as one JSON array of {name, title, help, kind, defaultTrials, defaultPreset}"),
+        )
+        .arg(
+            Arg::new("dry-run")
+                .long("dry-run")
+                .action(ArgAction::SetTrue)
+                .help("print the normalised spec, the points and units, every series' configuration and an estimated time from a short calibration run (trial 0 of the points); write nothing"),
+        )
+        .arg(
+            Arg::new("calibration")
+                .long("calibration")
+                .value_name("SECONDS")
+                .allow_hyphen_values(true)
+                .help("with --dry-run: seconds the calibration may start units for, an integer in 0..=600 (0: no estimate) [default: 3]"),
         )
         .arg(
             Arg::new(TRIALS.key)
@@ -72,7 +99,20 @@ budgets decisions by the clock: those results depend on the machine and its load
                 .allow_hyphen_values(true)
                 .help("custom: a series with its parameter values (repeat for more series)"),
         );
-    param_args(cmd, &[])
+    let base = experiment::common_base(Some(experiment::DEFAULT_PRESET));
+    let preset_keys: Vec<&str> = experiment::DEFAULT_PRESET
+        .edits()
+        .iter()
+        .map(|(k, _)| *k)
+        .collect();
+    let from = |key: &str| {
+        if preset_keys.contains(&key) {
+            format!("the {} preset", experiment::DEFAULT_PRESET)
+        } else {
+            "the paper's setting".to_string()
+        }
+    };
+    param_args(cmd, &[], Defaults::Base(&base, &from))
 }
 
 pub(super) fn merge_command() -> Command {
@@ -144,6 +184,21 @@ pub(super) fn spec_usage(e: SpecError) -> UsageError {
         } if field == "trials" || field == "seed" => {
             UsageError(format!("--{field} must be {allowed}, got {got}"))
         }
+        SpecError::NotApplying {
+            key,
+            series: Some(label),
+            why,
+        } => UsageError(format!(
+            "--series {label:?}: {key} does not apply to this configuration: {why}"
+        )),
+        SpecError::NotApplying {
+            key,
+            series: None,
+            why,
+        } => UsageError(format!(
+            "{} does not apply to any point of {why}",
+            flag(&key)
+        )),
         e => UsageError(e.to_string()),
     }
 }
@@ -152,7 +207,7 @@ pub(super) fn spec_usage(e: SpecError) -> UsageError {
 /// names first and renamed at the end, so a failure leaves no partial set.
 pub(super) fn write_files(
     dir: &str,
-    files: &[(String, String)],
+    files: &[(String, Vec<u8>)],
 ) -> Result<Vec<String>, UsageError> {
     let fail = |what: &str, e: std::io::Error| UsageError(format!("{what}: {e}"));
     std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
@@ -171,21 +226,40 @@ pub(super) fn write_files(
     Ok(done)
 }
 
-/// The files of a complete result: the result JSON, the per-point,
-/// per-trial and paired CSVs, and the chart.
-pub(super) fn result_files(set: &ResultSet) -> Vec<(String, String)> {
+/// The files of a complete result, each with its provenance: the result
+/// JSON, the per-point, per-trial and paired CSVs, and the chart as SVG
+/// and PNG.
+pub(super) fn result_files(set: &ResultSet, p: &Provenance) -> Vec<(String, Vec<u8>)> {
     let name = &set.plan.header.name;
     vec![
-        (format!("{name}.json"), set.to_json()),
-        (format!("{name}.csv"), set.csv()),
-        (format!("{name}.trials.csv"), set.trials_csv()),
-        (format!("{name}.paired.csv"), set.paired_csv()),
-        (format!("{name}.svg"), experiment::svg(set)),
+        (format!("{name}.json"), set.stamped_json(p).into_bytes()),
+        (format!("{name}.csv"), set.stamped_csv(p).into_bytes()),
+        (
+            format!("{name}.trials.csv"),
+            set.stamped_trials_csv(p).into_bytes(),
+        ),
+        (
+            format!("{name}.paired.csv"),
+            set.stamped_paired_csv(p).into_bytes(),
+        ),
+        (
+            format!("{name}.svg"),
+            experiment::svg_stamped(set, p).into_bytes(),
+        ),
+        (format!("{name}.png"), experiment::png_stamped(set, p)),
     ]
 }
 
-pub(super) fn list_experiments() {
-    for e in experiment::list() {
+pub(super) fn list_experiments(json: bool) {
+    let list = experiment::list();
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&list).expect("the list serialises")
+        );
+        return;
+    }
+    for e in list {
         out!(
             "{:<18} {:<8} {:>6} trials  {}",
             e.name,
@@ -197,11 +271,8 @@ pub(super) fn list_experiments() {
     }
 }
 
-pub(super) fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
-    if m.get_flag("list") {
-        list_experiments();
-        return Ok(());
-    }
+/// The spec that `experiment`'s flags describe, normalised.
+fn spec_of(m: &ArgMatches) -> Result<Spec, UsageError> {
     let name = m.get_one::<String>("name").ok_or_else(|| {
         UsageError(format!(
             "an experiment name is required: one of {} (--list describes them)",
@@ -240,8 +311,16 @@ pub(super) fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
             .collect::<Result<Vec<_>, _>>()?;
         spec.insert("series".into(), series.into());
     }
-    let spec = Spec::from_value(&spec.into()).map_err(spec_usage)?;
-    let plan = Plan::new(&spec).map_err(spec_usage)?;
+    Spec::from_value(&spec.into()).map_err(spec_usage)
+}
+
+pub(super) fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
+    if m.get_flag("list") {
+        list_experiments(m.get_flag("json"));
+        return Ok(());
+    }
+    let plan = Plan::new(&spec_of(m)?).map_err(spec_usage)?;
+    let name = plan.header.name.clone();
     let total = plan.total_units();
     let shard = m
         .get_one::<String>("shard")
@@ -249,19 +328,31 @@ pub(super) fn run_experiment(m: &ArgMatches) -> Result<(), UsageError> {
         .transpose()?;
     let (from, to) = shard.map_or((0, total), |s| s.range(total));
     let (threads, pool) = thread_pool(m)?;
+    if m.get_flag("dry-run") {
+        return dry_run(m, &plan, from, to, threads, &pool);
+    }
     let dir = m.get_one::<String>("out").map_or(".", String::as_str);
+    out!(
+        "{name}: seed {}, preset {}, {} points × {} trials; {} (--dry-run prints each series' configuration)",
+        plan.spec.seed,
+        plan.spec.preset.map_or("none", |p| p.name()),
+        plan.points.len(),
+        plan.trials(),
+        provenance::this_build()
+    );
     let t0 = Instant::now();
     let rows = with_progress(&pool, from..to, "trials", |u| {
         experiment::run_unit(&plan, u, None)
     });
     let seconds = t0.elapsed().as_secs_f64();
     let set = ResultSet::new(plan, from, to, rows).expect("rows of their own plan fit it");
+    let prov = invocation();
     let files = match shard {
         Some(s) => vec![(
             format!("{name}.shard-{}-of-{}.json", s.index, s.count),
-            set.to_json(),
+            set.stamped_json(&prov).into_bytes(),
         )],
-        None => result_files(&set),
+        None => result_files(&set, &prov),
     };
     for path in write_files(dir, &files)? {
         out!("wrote {path}");
@@ -290,9 +381,22 @@ pub(super) fn merge(m: &ArgMatches) -> Result<(), UsageError> {
         .zip(&texts)
         .map(|(n, t)| (n.as_str(), t.as_str()))
         .collect();
-    let set = experiment::merge(&files).map_err(|e| UsageError(e.to_string()))?;
+    let (set, provs) = provenance::merge_stamped(&files).map_err(|e| UsageError(e.to_string()))?;
+    let named: Vec<(&str, Option<&Provenance>)> = names
+        .iter()
+        .zip(&provs)
+        .map(|(n, p)| (n.as_str(), p.as_ref()))
+        .collect();
+    for w in provenance::merge_warnings(&named) {
+        eprintln!("warning: {w}");
+    }
+    let mut prov = invocation();
+    prov.sources = provs
+        .into_iter()
+        .map(|p| p.unwrap_or_else(provenance::unknown))
+        .collect();
     let dir = m.get_one::<String>("out").map_or(".", String::as_str);
-    for path in write_files(dir, &result_files(&set))? {
+    for path in write_files(dir, &result_files(&set, &prov))? {
         out!("wrote {path}");
     }
     Ok(())

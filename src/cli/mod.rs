@@ -20,6 +20,7 @@ macro_rules! out {
 
 mod args;
 mod bench;
+mod dry_run;
 mod experiments;
 mod run;
 #[cfg(test)]
@@ -34,7 +35,11 @@ use usage::UsageError;
 
 fn command() -> Command {
     Command::new("torus-search")
-        .version(env!("CARGO_PKG_VERSION"))
+        .version(
+            crate::experiment::provenance::this_build()
+                .trim_start_matches("torus-search ")
+                .to_string(),
+        )
         .about("MCTS for a single-target search game on a periodic 2-D lattice")
         .subcommand_required(true)
         .arg_required_else_help(true)

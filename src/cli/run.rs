@@ -1,6 +1,9 @@
 //! `torus-search run`: a batch of trials, one episode's moves, exact means.
 
-use super::args::{build_config, param_args, preset_arg, thread_pool, threads_arg, with_progress};
+use super::args::{
+    build_config, invocation, param_args, preset, preset_arg, thread_pool, threads_arg,
+    with_progress, Defaults,
+};
 use super::usage::{usage, UsageError};
 use crate::analysis::bootstrap::bca_mean;
 use crate::analysis::bound;
@@ -8,8 +11,10 @@ use crate::analysis::exact;
 use crate::analysis::interval::Interval;
 use crate::analysis::report;
 use crate::analysis::stats::{self, Summary};
+use crate::config::preset::Preset;
 use crate::config::schema::ConfigParam;
 use crate::config::{self, Config, TRIALS};
+use crate::experiment::provenance::{this_build, Provenance};
 use crate::run::batch;
 use crate::run::episode::TrialResult;
 use clap::{Arg, ArgAction, ArgMatches, Command};
@@ -19,6 +24,7 @@ pub(super) fn run_command() -> Command {
     param_args(
         Command::new("run").about("Run trials and summarise them."),
         &[],
+        Defaults::Schema,
     )
     .arg(preset_arg("none"))
     .arg(
@@ -98,14 +104,26 @@ pub(super) fn run(m: &ArgMatches) -> Result<(), UsageError> {
             seed: cfg.seed,
             config: &cfg,
         };
-        out!(
-            "{}",
-            serde_json::to_string(&report).expect("a report serialises")
-        );
+        out!("{}", stamped(&report));
     } else {
-        print_table(&cfg, &s, lower_bound, seconds, threads);
+        print_table(&cfg, preset(m, None)?, &s, lower_bound, seconds, threads);
     }
     Ok(())
+}
+
+/// A report with this run's provenance before its own fields.
+fn stamped<T: serde::Serialize>(report: &T) -> String {
+    #[derive(serde::Serialize)]
+    struct Stamped<'a, T> {
+        provenance: Provenance,
+        #[serde(flatten)]
+        report: &'a T,
+    }
+    serde_json::to_string(&Stamped {
+        provenance: invocation(),
+        report,
+    })
+    .expect("a report serialises")
 }
 
 /// The usage error of an exact evaluation refused: a bad configuration
@@ -133,10 +151,7 @@ pub(super) fn run_exact(cfg: &Config, json: bool) -> Result<(), UsageError> {
             seed: cfg.seed,
             config: cfg,
         };
-        out!(
-            "{}",
-            serde_json::to_string(&report).expect("a report serialises")
-        );
+        out!("{}", stamped(&report));
         return Ok(());
     }
     out!(
@@ -148,6 +163,7 @@ pub(super) fn run_exact(cfg: &Config, json: bool) -> Result<(), UsageError> {
         cfg.start[1]
     );
     out!("searcher: {}", cfg.label());
+    out!("{}", this_build());
     out!("{:<28}{:>10.3}", "exact mean steps", exact.mean);
     out!(
         "{:<28}{:>10.3}   (mean steps / bound {})",
@@ -198,10 +214,7 @@ pub(super) fn run_blind(
         config: cfg,
     };
     if json {
-        out!(
-            "{}",
-            serde_json::to_string(&report).expect("a report serialises")
-        );
+        out!("{}", stamped(&report));
         return Ok(());
     }
     out!(
@@ -214,6 +227,7 @@ pub(super) fn run_blind(
         trials
     );
     out!("searcher: {}", cfg.label());
+    out!("{}", this_build());
     out!(
         "{:<28}{}",
         "mean steps   [95% interval]",
@@ -257,6 +271,7 @@ fn interval(m: &Interval) -> String {
 
 pub(super) fn print_table(
     cfg: &Config,
+    preset: Option<Preset>,
     s: &Summary,
     lower_bound: f64,
     seconds: f64,
@@ -279,6 +294,11 @@ pub(super) fn print_table(
         cfg.seed
     );
     out!("searcher: {who}");
+    out!(
+        "preset: {} (the flags given override it)",
+        preset.map_or("none", Preset::name)
+    );
+    out!("{}", this_build());
     out!("{:<28}{}", "trials", s.trials);
     out!(
         "{:<28}{}",

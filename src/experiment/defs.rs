@@ -47,6 +47,90 @@ named_enum! {
     }
 }
 
+named_enum! {
+    /// The mark of a series at its points: a shape, so that series differ
+    /// by shape as well as by colour (the page draws them with Observable
+    /// Plot's symbols of the same names).
+    pub enum Marker {
+        /// A filled circle.
+        Circle = "circle",
+        /// A filled square.
+        Square = "square",
+        /// A filled triangle, point up.
+        Triangle = "triangle",
+        /// A filled diamond.
+        Diamond = "diamond",
+        /// An ×.
+        Times = "times",
+        /// A +.
+        Plus = "plus",
+        /// A filled five-pointed star.
+        Star = "star",
+        /// A filled hexagon.
+        Hexagon = "hexagon",
+        /// A Y of three arms.
+        Wye = "wye",
+        /// An asterisk of three strokes.
+        Asterisk = "asterisk",
+    }
+}
+
+/// Series colours: Petroff's ten-colour sequence (M. A. Petroff, "Accessible
+/// Color Sequences for Data Visualization", 2021; matplotlib's `petroff10`),
+/// chosen so that its colours stay apart under the common colour-vision
+/// deficiencies. `defs_tests.rs` checks that they do, under simulation.
+pub const PALETTE: [[u8; 3]; 10] = [
+    [0x3f, 0x90, 0xda],
+    [0xff, 0xa9, 0x0e],
+    [0xbd, 0x1f, 0x01],
+    [0x94, 0xa4, 0xa2],
+    [0x83, 0x2d, 0xb6],
+    [0xa9, 0x6b, 0x59],
+    [0xe7, 0x63, 0x00],
+    [0xb9, 0xac, 0x70],
+    [0x71, 0x75, 0x81],
+    [0x92, 0xda, 0xdd],
+];
+
+/// Line dash patterns (on, off, … in pixels; empty: solid), so that lines
+/// differ when printed in grey or seen by anyone.
+pub const DASHES: [&[u32]; 6] = [
+    &[],
+    &[9, 4],
+    &[2, 3],
+    &[10, 3, 2, 3],
+    &[16, 5],
+    &[6, 3, 2, 3, 2, 3],
+];
+
+/// How series `i` is drawn: its colour, line dash and marker. The three
+/// cycle with periods 10, 6 and 10, and the dash also changes with each
+/// round of colours, so no two of the first 60 series look alike.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct SeriesStyle {
+    /// Its colour, RGB.
+    #[serde(serialize_with = "hex_colour")]
+    pub colour: [u8; 3],
+    /// Its dash pattern (empty: solid).
+    pub dash: &'static [u32],
+    /// Its marker.
+    pub marker: Marker,
+}
+
+fn hex_colour<S: serde::Serializer>(c: &[u8; 3], s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]))
+}
+
+/// The style of series `i`.
+pub fn series_style(i: usize) -> SeriesStyle {
+    let round = i / PALETTE.len();
+    SeriesStyle {
+        colour: PALETTE[i % PALETTE.len()],
+        dash: DASHES[(i + round) % DASHES.len()],
+        marker: Marker::ALL[(i + 3 * round) % Marker::ALL.len()],
+    }
+}
+
 /// The preset of the paper's figures: the authors' code made them.
 pub const PAPER: Preset = Preset::PaperCode;
 
@@ -445,7 +529,7 @@ pub static DEFINITIONS: &[Definition] = &[
         }),
         series: each_variant,
         pairs: &[],
-        y_log: false,
+        y_log: true,
         references: &[ReferenceDef {
             label: "authors' published means (PlotMCTsKnownN20.m)",
             x: &["100", "200", "400", "800", "1600", "3200"],
@@ -548,6 +632,10 @@ pub fn names() -> Vec<&'static str> {
 pub fn find(name: &str) -> Option<&'static Definition> {
     DEFINITIONS.iter().find(|d| d.name == name)
 }
+
+#[cfg(test)]
+#[path = "defs_tests.rs"]
+mod palette_tests;
 
 #[cfg(test)]
 mod tests {

@@ -21,6 +21,7 @@ mod defs;
 mod output;
 mod pairs;
 mod plan;
+pub mod provenance;
 mod read;
 mod result;
 mod run;
@@ -32,12 +33,16 @@ mod tidy;
 mod chart;
 
 #[cfg(not(target_arch = "wasm32"))]
-pub use chart::svg;
+pub use chart::{png_stamped, svg, svg_stamped};
 
-pub use defs::{Chart, Definition, Kind, Metric, DEFINITIONS};
+pub use defs::{
+    series_style, Chart, Definition, Kind, Marker, Metric, SeriesStyle, COMMON_DEFAULTS,
+    DEFINITIONS, PALETTE,
+};
 pub use output::{CSV_HEADER, PAIRED_CSV_HEADER};
 pub use pairs::PairStats;
-pub use plan::{Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
+pub use plan::{common_base, Axis, Header, Plan, Point, PointView, Reference, YAxis, MAX_UNITS};
+pub use provenance::Provenance;
 pub use read::{merge, read, read_with_json, MergeError};
 pub use result::{ResultError, ResultSet};
 pub use result::{FORMAT, FORMAT_VERSION};

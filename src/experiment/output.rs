@@ -10,6 +10,7 @@
 
 use super::pairs::PairStats;
 use super::plan::{Header, PointView};
+use super::provenance::Provenance;
 use super::result::{ResultSet, FORMAT, FORMAT_VERSION};
 use super::run::{Row, ROW_FIELDS};
 use super::spec::Spec;
@@ -51,6 +52,8 @@ struct Out<'a> {
     format: &'static str,
     format_version: u64,
     version: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    provenance: Option<&'a Provenance>,
     spec: &'a Spec,
     experiment: &'a Header,
     units: Units,
@@ -61,8 +64,14 @@ struct Out<'a> {
 }
 
 impl ResultSet {
-    /// The result JSON (compact, one line).
+    /// The result JSON (compact, one line), without provenance: the bytes
+    /// that compare equal (shards merged and one run; the page and the CLI).
     pub fn to_json(&self) -> String {
+        self.json_with(None)
+    }
+
+    /// The result JSON, with `provenance` after `version` when given.
+    pub(super) fn json_with(&self, provenance: Option<&Provenance>) -> String {
         let points = self
             .plan
             .point_views()
@@ -74,6 +83,7 @@ impl ResultSet {
             format: FORMAT,
             format_version: FORMAT_VERSION,
             version: env!("CARGO_PKG_VERSION"),
+            provenance,
             spec: &self.plan.spec,
             experiment: &self.plan.header,
             units: Units {

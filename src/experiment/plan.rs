@@ -10,6 +10,7 @@
 
 use super::defs::{self, Chart, Kind, Metric, SeriesDef, COMMON_DEFAULTS};
 use super::spec::{Spec, SpecError};
+use crate::config::preset::Preset;
 use crate::config::{self, Config};
 use crate::param::ParamKind;
 use crate::searchers::mcts::search::MS;
@@ -164,15 +165,27 @@ impl XSpec {
     }
 }
 
+/// What every experiment starts from, before its own values: the schema's
+/// defaults, `preset`, then the paper's setting (N = 40, r_v = 1, start
+/// (1,1), L = 100).
+pub fn common_base(preset: Option<Preset>) -> Config {
+    let mut base = Config::default();
+    if let Some(p) = preset {
+        base.apply_preset(p);
+    }
+    for (k, v) in COMMON_DEFAULTS {
+        base.set(k, v)
+            .unwrap_or_else(|e| panic!("common default {k}={v}: {e}"));
+    }
+    base
+}
+
 /// The configuration every point starts from: the preset, the common and
 /// the definition's defaults, the spec's params and its seed.
 fn base_config(spec: &Spec) -> Result<Config, SpecError> {
     let def = spec.definition();
-    let mut base = Config::default();
-    if let Some(p) = spec.preset {
-        base.apply_preset(p);
-    }
-    for (k, v) in COMMON_DEFAULTS.iter().chain(def.defaults) {
+    let mut base = common_base(spec.preset);
+    for (k, v) in def.defaults {
         base.set(k, v)
             .unwrap_or_else(|e| panic!("experiment {} default {k}={v}: {e}", def.name));
     }
@@ -247,6 +260,47 @@ fn check_overrides(spec: &Spec, x: &XSpec, series: &[SeriesDef]) -> Result<(), S
                 "{key} is the swept parameter; series {:?} cannot set it",
                 s.label
             )));
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a parameter that no run would read, as `run` refuses its flag:
+/// the spec's params and the swept key must apply to some point, the
+/// params of a series the spec gives to some point of that series.
+fn check_applies(
+    spec: &Spec,
+    x: &XSpec,
+    series: &[SeriesDef],
+    points: &[Point],
+) -> Result<(), SpecError> {
+    let name = spec.definition().name;
+    for key in spec.params.keys().chain(x.key.iter()) {
+        let p = config::schema::entry(key).expect("a canonical key");
+        if !points.iter().any(|pt| p.applies_to(&pt.config)) {
+            return Err(SpecError::NotApplying {
+                key: key.clone(),
+                series: None,
+                why: format!("{name}: {}", p.not_applying(&points[0].config)),
+            });
+        }
+    }
+    // The spec's series only: a definition's series may set a key that
+    // one of them ignores (rollout for every variant, pomcp's included).
+    if spec.series.is_none() {
+        return Ok(());
+    }
+    for (si, s) in series.iter().enumerate() {
+        let mine: Vec<&Point> = points.iter().filter(|p| p.series == si).collect();
+        for (key, _) in &s.params {
+            let p = config::schema::entry(key).expect("a canonical key");
+            if !mine.iter().any(|pt| p.applies_to(&pt.config)) {
+                return Err(SpecError::NotApplying {
+                    key: key.to_string(),
+                    series: Some(s.label.clone()),
+                    why: p.not_applying(&mine[0].config),
+                });
+            }
         }
     }
     Ok(())
@@ -383,17 +437,7 @@ impl Plan {
         check_overrides(spec, &x, &series)?;
         let points = points_of(&base, &series, &x)?;
         if def.kind == Kind::Episodes {
-            let given = spec.params.keys().chain(x.key.iter());
-            for key in given {
-                let p = config::schema::entry(key).expect("a canonical key");
-                if !points.iter().any(|pt| p.applies_to(&pt.config)) {
-                    return Err(SpecError::Conflict(format!(
-                        "{key} does not apply to any point of {}: {}",
-                        def.name,
-                        p.not_applying(&points[0].config)
-                    )));
-                }
-            }
+            check_applies(spec, &x, &series, &points)?;
         }
         let total = (points.len() as u64).checked_mul(spec.trials);
         if total.is_none_or(|t| t > MAX_UNITS) {
@@ -652,7 +696,17 @@ mod tests {
         assert!(err(
             r#"{"name":"custom","params":{"searcher":"rw"},"sweep":{"key":"mu","values":["2"]}}"#
         )
-        .starts_with("mu does not apply to any point of custom"));
+        .starts_with("mu does not apply to any point of custom: "));
+        assert_eq!(
+            err(r#"{"name":"custom","series":[{"label":"A","params":{"searcher":"rw","c":"2"}}]}"#),
+            "c does not apply to series \"A\": searcher rw does not read it"
+        );
+        // A series key read at some of its points is kept (sigma, where the prior is Gaussian).
+        assert!(plan(r#"{"name":"custom","sweep":{"key":"prior","values":["gaussian","uniform"]},"series":[{"label":"B","params":{"searcher":"rw","sigma":"3"}}]}"#).is_ok());
+        assert_eq!(
+            err(r#"{"name":"custom","sweep":{"key":"prior","values":["delta","uniform"]},"series":[{"label":"B","params":{"sigma":"3"}}]}"#),
+            "sigma does not apply to series \"B\": it applies with prior gaussian and no fixed target"
+        );
         assert_eq!(
             err(r#"{"name":"known-n20","params":{"n":"10"}}"#),
             "start must be x,y with each in 1..=10, got 11,11 (at point \"MCTS cells\", loops=100)"

@@ -103,7 +103,13 @@ pub fn read(text: &str) -> Result<ResultSet, ResultError> {
 /// # Errors
 /// As [`read`].
 pub fn read_with_json(text: &str) -> Result<(ResultSet, String), ResultError> {
-    let v: Value = serde_json::from_str(text).map_err(|e| ResultError::Json(e.to_string()))?;
+    let v: Value = serde_json::from_str(text).map_err(|e| {
+        ResultError::Json(if e.is_eof() {
+            format!("{e}: the text ends early, so the file is truncated (an interrupted write or copy?)")
+        } else {
+            e.to_string()
+        })
+    })?;
     let obj = v
         .as_object()
         .ok_or_else(|| ResultError::Foreign(format!("the top level is {}", shown(&v))))?;

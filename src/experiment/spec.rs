@@ -61,6 +61,16 @@ pub enum SpecError {
         /// The first invalid field.
         error: ParamError,
     },
+    /// A parameter no point (of its series) reads, refused as `run`
+    /// refuses a flag that does not apply.
+    NotApplying {
+        /// The parameter key.
+        key: String,
+        /// The series that sets it; `None` for the spec's params or sweep.
+        series: Option<String>,
+        /// Why it does not apply.
+        why: String,
+    },
     /// A request the experiment cannot honour (a sweep on a named
     /// experiment, an override of the swept parameter, ...).
     Conflict(String),
@@ -87,6 +97,10 @@ impl fmt::Display for SpecError {
             ),
             SpecError::Param { place, error } => write!(f, "{error} (in {place})"),
             SpecError::Point { point, error } => write!(f, "{error} (at point {point})"),
+            SpecError::NotApplying { key, series, why } => match series {
+                Some(label) => write!(f, "{key} does not apply to series {label:?}: {why}"),
+                None => write!(f, "{key} does not apply to any point of {why}"),
+            },
             SpecError::Conflict(msg) => f.write_str(msg),
         }
     }

@@ -15,6 +15,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 import { ROOT, cliBinary, describeProblems, launchBrowser, openPage, screenshot, startServer } from './harness.mjs';
+import { stripProvenance as strip } from './strip.mjs';
 
 let server;
 let browser;
@@ -109,13 +110,24 @@ test('the page and the CLI give the same result, byte for byte, for any number o
       assert.equal(await page.locator(id).isDisabled(), false, `${id} with a result`);
     }
     const text = await page.evaluate(() => window.torusTest.experiments.result());
-    assert.equal(text, cli.json, 'the page JSON is the CLI JSON');
-    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('csv')), cli.csv, 'the page CSV is the CLI CSV');
-    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('trials-csv')), cli.trials, 'the per-trial CSV is the CLI\'s');
-    assert.equal(await page.evaluate(() => window.torusTest.experiments.exported('paired-csv')), cli.paired, 'the paired CSV is the CLI\'s');
+    // The same bytes but for the provenance (the page's: its build, the date, its URL).
+    assert.equal(strip(text), strip(cli.json), 'the page JSON is the CLI JSON');
+    assert.notEqual(text, cli.json, 'each carries its own provenance');
+    const prov = JSON.parse(text).provenance;
+    assert.deepEqual(Object.keys(prov), ['version', 'commit', 'dirty', 'date', 'command']);
+    const build = await page.evaluate(async () => (await import('./www/shared/provenance.js')).currentBuild());
+    assert.equal(prov.commit, build.commit, "the page's engine made it");
+    assert.match(prov.commit, /^([0-9a-f]{40}|unknown)$/);
+    assert.match(prov.date, /^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ$/);
+    assert.ok(prov.command.startsWith(server.url), prov.command);
+    const csv = await page.evaluate(() => window.torusTest.experiments.exported('csv'));
+    assert.equal(strip(csv), strip(cli.csv), 'the page CSV is the CLI CSV');
+    assert.ok(csv.includes(`\n# date: ${prov.date}\n`), 'the CSV carries the provenance of its result');
+    assert.equal(strip(await page.evaluate(() => window.torusTest.experiments.exported('trials-csv'))), strip(cli.trials), 'the per-trial CSV is the CLI\'s');
+    assert.equal(strip(await page.evaluate(() => window.torusTest.experiments.exported('paired-csv'))), strip(cli.paired), 'the paired CSV is the CLI\'s');
     const result = JSON.parse(text);
     // One row per trial; the paired table: RW against MCTS at each σ, as the engine computed it.
-    assert.equal(cli.trials.trim().split('\n').length, 1 + 12);
+    assert.equal(strip(cli.trials).trim().split('\n').length, 1 + 12);
     assert.equal(result.paired.length, 2);
     assert.equal(await page.locator('#exp-paired tbody tr').count(), 2);
     const first = await page.locator('#exp-paired tbody tr').first().locator('td').allTextContents();
@@ -136,7 +148,7 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     for (const k of [1, 3]) {
       await page.evaluate((n) => window.torusTest.experiments.usePool(n), k);
       assert.equal(await runAndWait(page), 'done');
-      assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), cli.json, `${k} worker(s)`);
+      assert.equal(strip(await page.evaluate(() => window.torusTest.experiments.result())), strip(cli.json), `${k} worker(s)`);
     }
     // Fault injection: a worker dies mid-run. The pool replaces it and the
     // fresh worker re-runs its chunk: the same bytes.
@@ -147,7 +159,7 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     await page.waitForFunction(() => ['done', 'error', 'cancelled'].includes(document.body.dataset.experiment), null, { timeout: 240_000, polling: 100 });
     assert.equal(await status(page), 'done', await page.locator('#exp-status').textContent());
     assert.equal(await page.evaluate(() => window.torusTest.experiments.replaced()), 1, 'one worker was replaced');
-    assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), cli.json, 'a lost worker changes no byte');
+    assert.equal(strip(await page.evaluate(() => window.torusTest.experiments.result())), strip(cli.json), 'a lost worker changes no byte');
     // Downloads: SVG (the chart, with its title) and PNG.
     const svg = await page.evaluate(() => window.torusTest.experiments.exported('svg'));
     assert.match(svg, /^<svg xmlns="http:\/\/www.w3.org\/2000\/svg"/);
@@ -200,7 +212,8 @@ test('a point opens in the live view with its configuration and the seed of its 
     // A click on the chart opens the point under the pointer (the means chart: a dot at σ = 0).
     await page.selectOption('#exp-chart', 'mean');
     await page.waitForSelector('#exp-figure[data-mode="mean"]', { timeout: 10_000 });
-    const dot = await page.locator('#exp-figure g[aria-label="dot"] circle').first().boundingBox();
+    // Each series' dots are its marker (a path; a circle for the first).
+    const dot = await page.locator('#exp-figure g[aria-label="dot"] :is(circle, path)').first().boundingBox();
     await page.mouse.move(dot.x + dot.width / 2, dot.y + dot.height / 2);
     await page.mouse.click(dot.x + dot.width / 2, dot.y + dot.height / 2);
     await page.waitForFunction(() => window.torusTest.view() === 'live', null, { timeout: 10_000 });
@@ -245,7 +258,7 @@ test('cancelling a run leaves the page usable, and a new run starts clean', { ti
     await page.locator('#exp-trials').dispatchEvent('change');
     assert.equal(await page.evaluate(() => window.torusTest.experiments.state().trials), SMALL.trials);
     assert.equal(await runAndWait(page), 'done');
-    assert.equal(await page.evaluate(() => window.torusTest.experiments.result()), cli.json);
+    assert.equal(strip(await page.evaluate(() => window.torusTest.experiments.result())), strip(cli.json));
     assert.equal(await page.evaluate(() => document.getElementById('exp-progress').value), 12);
   });
 });

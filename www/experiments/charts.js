@@ -12,8 +12,12 @@
 //   excess mean steps − optimal with 95% intervals (episodes measured in steps)
 //   hist   (targets experiments) one heatmap of sampled targets per point
 // The experiment's header names the chart that fits it first (its `chart`).
+// Series are drawn in the engine's styles (seriesStyles: the CLI charts'
+// colour-blind-safe colours, markers and dashes), so no two look alike.
 
 import { scriptURL } from '../shared/trusted.js';
+import { seriesStyles } from '../shared/engine.js';
+import { provenance, provenanceLine } from '../shared/provenance.js';
 
 /** Plot's class name for its elements; www/style.css styles them (see drawExperiment). */
 const CLASS = 'exp-plot';
@@ -42,6 +46,20 @@ export function loadPlot() {
     return globalThis.Plot;
   })();
   return plotReady;
+}
+
+/** Series i's style { colour, dash, marker } (the engine's, shared with the CLI's charts). */
+function styleOf(i) {
+  const all = seriesStyles();
+  return all[i % all.length];
+}
+
+/** The colour and symbol scales of `series`, in the engine's styles. */
+function seriesScales(series) {
+  return {
+    color: { domain: series, range: series.map((_, i) => styleOf(i).colour), legend: true },
+    symbol: { domain: series, range: series.map((_, i) => styleOf(i).marker) },
+  };
 }
 
 /** The header's chart → this module's mode. */
@@ -146,7 +164,7 @@ function boxPlot(Plot, result, width) {
     Plot.ruleX(data, { ...fx, x: 's', y1: y('whisker_low'), y2: y('whisker_high'), stroke: 's' }),
     Plot.barY(data, { ...fx, x: 's', y1: y('q1'), y2: y('q3'), fill: 's', fillOpacity: 0.35, stroke: 's' }),
     Plot.tickY(data, { ...fx, x: 's', y: y('median'), stroke: 's', strokeWidth: 2.5 }),
-    Plot.dot(data, { ...fx, x: 's', y: y('mean'), fill: 'white', stroke: 's', r: 2.5, symbol: 'diamond' }),
+    Plot.dot(data, { ...fx, x: 's', y: y('mean'), fill: 's', stroke: 's', r: 3.5, symbol: 's' }),
     Plot.text(data.filter((d) => d.capped > 0), { ...fx, x: 's', y: y('whisker_high'), text: (d) => String(d.capped), dy: -7, fontSize: 9, fill: CAPPED_COLOR }),
   ];
   if (bounds.length) marks.push(Plot.tickY(bounds, { ...fx, x: 's', y: y('lower_bound'), stroke: BOUND_COLOR, strokeWidth: 1.5, strokeDasharray: '4,2' }));
@@ -162,7 +180,7 @@ function boxPlot(Plot, result, width) {
     ...(single ? {} : { fx: { domain: e.x.values, label: e.x.label, padding: 0.12 } }),
     x: single ? { domain: series, label: null, tickRotate: series.some((l) => l.length > 12) ? -15 : 0 } : { domain: series, axis: null, paddingInner: 0.15, paddingOuter: 0.1 },
     y: { label: e.y.label, type: log ? 'log' : 'linear', grid: true, nice: true },
-    color: { domain: series, legend: true, scheme: 'tableau10' },
+    ...seriesScales(series),
     marks,
   });
 }
@@ -186,11 +204,15 @@ function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'mean_lo', hi: 'm
   const series = e.series;
   const marks = [];
   if (!single) {
-    marks.push(Plot.areaY(data, { x: xv, y1: y(f.lo), y2: y(f.hi), fill: 's', z: 's', fillOpacity: 0.18 }));
-    marks.push(Plot.lineY(data, { x: xv, y: y(f.mean), stroke: 's', z: 's', strokeWidth: 1.8 }));
+    marks.push(Plot.areaY(data, { x: xv, y1: y(f.lo), y2: y(f.hi), fill: 's', z: 's', fillOpacity: 0.15 }));
+    // One line per series, in its dash (a dash pattern is not a channel).
+    series.forEach((label, i) => {
+      const dash = styleOf(i).dash;
+      marks.push(Plot.lineY(data.filter((d) => d.s === label), { x: xv, y: y(f.mean), stroke: 's', strokeWidth: 1.8, ...(dash.length ? { strokeDasharray: dash.join(',') } : {}) }));
+    });
   }
   marks.push(Plot.ruleX(data, { x: xv, y1: y(f.lo), y2: y(f.hi), stroke: 's', strokeOpacity: single ? 1 : 0.6, strokeWidth: single ? 2 : 1 }));
-  marks.push(Plot.dot(data, { x: xv, y: y(f.mean), fill: 's', r: 3 }));
+  marks.push(Plot.dot(data, { x: xv, y: y(f.mean), fill: 's', stroke: 's', symbol: 's', r: 3.5 }));
   if (bounds.length) {
     if (single) marks.push(Plot.tickY(bounds, { x: xv, y: y('lower_bound'), stroke: BOUND_COLOR, strokeWidth: 1.5, strokeDasharray: '4,2' }));
     else marks.push(Plot.lineY(bounds, { x: xv, y: y('lower_bound'), z: 's', stroke: BOUND_COLOR, strokeDasharray: '6,4' }));
@@ -216,7 +238,7 @@ function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'mean_lo', hi: 'm
     className: CLASS,
     x,
     y: { label: f.label, type: log ? 'log' : 'linear', grid: true, nice: true },
-    color: { domain: series, legend: true, scheme: 'tableau10' },
+    ...seriesScales(series),
     marks,
   });
 }
@@ -303,6 +325,9 @@ export async function drawExperiment(el, result, mode, { onPoint = () => {} } = 
     st.remove();
     return st.textContent;
   });
+  // What standaloneSvg needs for its legend and caption.
+  fig.result = result;
+  fig.mode = mode;
   fig.addEventListener('click', () => {
     const v = fig.value;
     if (!v) return;
@@ -321,10 +346,95 @@ function svgEl(name, attrs, text) {
   return node;
 }
 
+/** An SVG path of marker `name` (the engine's marker names, as Plot's symbols) of radius r at (0, 0), and whether it is filled. */
+export function markerPath(name, r = 4.5) {
+  const ring = (n, rr, inner = null) => {
+    const k = inner === null ? n : 2 * n;
+    return Array.from({ length: k }, (_, i) => {
+      const a = -Math.PI / 2 + (2 * Math.PI * i) / k;
+      const q = i % 2 === 1 && inner !== null ? inner : rr;
+      return [q * Math.cos(a), q * Math.sin(a)];
+    });
+  };
+  const poly = (pts) => `M${pts.map(([x, y]) => `${x.toFixed(2)},${y.toFixed(2)}`).join('L')}Z`;
+  const lines = (segs) => segs.map(([a, b, c, d]) => `M${a.toFixed(2)},${b.toFixed(2)}L${c.toFixed(2)},${d.toFixed(2)}`).join('');
+  switch (name) {
+    case 'circle': return { d: `M${r},0A${r},${r} 0 1,1 ${-r},0A${r},${r} 0 1,1 ${r},0Z`, filled: true };
+    case 'square': return { d: poly([[-0.9 * r, -0.9 * r], [0.9 * r, -0.9 * r], [0.9 * r, 0.9 * r], [-0.9 * r, 0.9 * r]]), filled: true };
+    case 'triangle': return { d: poly(ring(3, 1.25 * r)), filled: true };
+    case 'diamond': return { d: poly([[0, -1.3 * r], [1.3 * r, 0], [0, 1.3 * r], [-1.3 * r, 0]]), filled: true };
+    case 'star': return { d: poly(ring(5, 1.35 * r, 0.6 * r)), filled: true };
+    case 'hexagon': return { d: poly(ring(6, 1.1 * r)), filled: true };
+    case 'times': return { d: lines([[-r, -r, r, r], [-r, r, r, -r]]), filled: false };
+    case 'plus': return { d: lines([[-1.25 * r, 0, 1.25 * r, 0], [0, -1.25 * r, 0, 1.25 * r]]), filled: false };
+    case 'wye': return { d: lines(ring(3, 1.3 * r).map(([x, y]) => [0, 0, x, -y])), filled: false };
+    default: return { d: lines(ring(6, 1.25 * r).slice(0, 3).map(([x, y]) => [-x, -y, x, y])), filled: false };
+  }
+}
+
+let measureCtx = null;
+/** The width of `text` in px at `size` in the exports' font. */
+function textWidth(text, size) {
+  measureCtx ??= document.createElement('canvas').getContext('2d');
+  measureCtx.font = `${size}px ${PAPER.fontFamily}`;
+  return measureCtx.measureText(text).width;
+}
+
+/** `text` in lines no wider than `max` px at `size`, broken at spaces; a word longer than a line (a URL) fills each line it needs. */
+function wrapLines(text, max, size) {
+  const lines = [];
+  let line = '';
+  for (const word of String(text).split(' ')) {
+    const joined = line ? `${line} ${word}` : word;
+    if (textWidth(joined, size) <= max) {
+      line = joined;
+      continue;
+    }
+    if (textWidth(word, size) <= max) {
+      lines.push(line);
+      line = word;
+      continue;
+    }
+    // Too long for any line: character by character from where the line is.
+    let rest = line ? ' ' : '';
+    for (const ch of word) {
+      if (textWidth(line + rest + ch, size) > max && (line + rest).trim()) {
+        lines.push(line + rest.trimEnd());
+        line = '';
+        rest = '';
+      }
+      rest += ch;
+    }
+    line += rest;
+  }
+  lines.push(line);
+  return lines.filter((l, i) => l || i === 0);
+}
+
 /**
- * One standalone SVG of a drawn chart: a title, the colour legend (Plot
- * draws it as HTML beside the SVG) and the plot's SVG, on its background.
- * Returns the SVG text.
+ * The caption of an exported chart: what ran (experiment, trials, seed,
+ * preset), which build made the results and when, and this export's
+ * provenance (the page's build, the date, the page's URL and the spec).
+ */
+export function exportCaption(result, mode, p = provenance()) {
+  const e = result.experiment;
+  const s = result.spec;
+  const made = result.provenance ? provenanceLine(result.provenance) : 'made before results carried their provenance';
+  return [
+    `${e.name} · ${MODE_LABELS[mode] ?? mode} · ${s.trials} ${e.kind === 'targets' ? 'samples' : 'trials'} per point · seed ${s.seed} · preset ${s.preset ?? 'none'}`,
+    `results: ${made}`,
+    `exported: ${provenanceLine(p)}`,
+    `page: ${p.command}`,
+    `spec: ${JSON.stringify(s)}`,
+  ];
+}
+
+/**
+ * One standalone SVG of a drawn chart: a title, the legend (Plot draws it
+ * as HTML beside the SVG; here it wraps onto as many rows as it needs,
+ * each series with its colour and marker), the plot's SVG, and a caption
+ * (exportCaption), on its background. The provenance is also kept as JSON
+ * in <metadata>. Returns the SVG text.
  */
 export function standaloneSvg(fig, title) {
   const plotSvg = fig.tagName.toLowerCase() === 'svg' ? fig : fig.querySelector(':scope > svg:not([class$="-ramp"])') ?? fig.querySelector('svg:last-of-type');
@@ -332,21 +442,42 @@ export function standaloneSvg(fig, title) {
   const h = Number(plotSvg.getAttribute('height'));
   const legend = [];
   const color = typeof fig.scale === 'function' ? fig.scale('color') : null;
-  if (color && color.type === 'ordinal') color.domain.forEach((d, i) => legend.push([String(d), color.range[i % color.range.length]]));
+  // Series i is drawn in the engine's style i: its colour and marker.
+  if (color && color.type === 'ordinal') color.domain.forEach((d, i) => legend.push([String(d), styleOf(i).colour, styleOf(i).marker]));
   const ramp = fig.tagName.toLowerCase() === 'figure' ? fig.querySelector('svg[class$="-ramp"]') : null;
+  // Legend items in rows: a row ends before an item would cross the right edge.
+  const rows = [[]];
+  let x = 10;
+  for (const item of legend) {
+    const iw = 30 + textWidth(item[0], 12);
+    if (x + iw > w - 10 && rows.at(-1).length) {
+      rows.push([]);
+      x = 10;
+    }
+    rows.at(-1).push({ item, x });
+    x += iw;
+  }
   const top = 28;
-  const legendH = legend.length ? 22 : ramp ? Number(ramp.getAttribute('height')) + 6 : 0;
-  const out = svgEl('svg', { xmlns: SVG_NS, width: w, height: top + legendH + h, viewBox: `0 0 ${w} ${top + legendH + h}`, 'font-family': PAPER.fontFamily, 'font-size': 12 });
+  const legendH = legend.length ? 20 * rows.length + 4 : ramp ? Number(ramp.getAttribute('height')) + 6 : 0;
+  const p = provenance();
+  const caption = fig.result ? exportCaption(fig.result, fig.mode, p).flatMap((l) => wrapLines(l, w - 20, 11)) : [];
+  const total = top + legendH + h + (caption.length ? 8 + 15 * caption.length : 0);
+  const out = svgEl('svg', { xmlns: SVG_NS, width: w, height: total, viewBox: `0 0 ${w} ${total}`, 'font-family': PAPER.fontFamily, 'font-size': 12 });
+  out.append(svgEl('metadata', { id: 'torus-search-provenance' }, JSON.stringify({ export: p, results: fig.result?.provenance ?? null, spec: fig.result?.spec ?? null })));
   if (fig.plotStyles?.length) out.append(svgEl('style', {}, fig.plotStyles.join('\n')));
   out.append(svgEl('rect', { width: '100%', height: '100%', fill: PAPER.background }));
   out.append(svgEl('text', { x: 10, y: 19, 'font-size': 14, 'font-weight': 600, fill: PAPER.color }, title));
-  let x = 10;
-  for (const [label, fill] of legend) {
-    out.append(svgEl('rect', { x, y: top + 4, width: 12, height: 12, fill }));
-    const t = svgEl('text', { x: x + 16, y: top + 14, fill: PAPER.color }, label);
-    out.append(t);
-    x += 28 + 7 * label.length;
-  }
+  rows.forEach((row, r) => {
+    for (const { item: [label, fill, marker], x: ix } of row) {
+      const y = top + 4 + 20 * r;
+      out.append(svgEl('rect', { x: ix, y, width: 16, height: 12, fill, 'fill-opacity': 0.35, stroke: fill }));
+      if (marker) {
+        const m = markerPath(marker, 3.5);
+        out.append(svgEl('path', { d: m.d, transform: `translate(${ix + 8},${y + 6})`, fill: m.filled ? fill : 'none', stroke: m.filled ? '#333' : fill, 'stroke-width': m.filled ? 0.6 : 1.6 }));
+      }
+      out.append(svgEl('text', { x: ix + 20, y: y + 10, fill: PAPER.color }, label));
+    }
+  });
   if (!legend.length && ramp) {
     const r = ramp.cloneNode(true);
     r.setAttribute('x', 10);
@@ -357,6 +488,7 @@ export function standaloneSvg(fig, title) {
   body.setAttribute('x', 0);
   body.setAttribute('y', top + legendH);
   out.append(body);
+  caption.forEach((line, i) => out.append(svgEl('text', { x: 10, y: top + legendH + h + 18 + 15 * i, 'font-size': 11, fill: '#4b5563' }, line)));
   return new XMLSerializer().serializeToString(out);
 }
 

@@ -1,8 +1,11 @@
 // Sharing a run: the link, a PNG of the boards, and episode files that
 // replay exactly. An episode file carries the page's URL query (every
 // parameter, the seed included), each run's engine config and its path.
+// Both carry their provenance (www/shared/provenance.js): the PNG as a
+// caption under the boards, the file as a `provenance` object.
 
 import { $, download, showMessage } from '../shared/ui.js';
+import { provenance, provenanceLine } from '../shared/provenance.js';
 
 export const EPISODE_FORMAT = 'torus-search-episode';
 /** Files this page writes; it reads versions 1 and 2 (both carry url_query). */
@@ -20,22 +23,59 @@ export async function copyLink(link) {
   }
 }
 
-/** Saves the boards side by side as one PNG. */
-export function exportPng(canvases, name) {
-  const w = canvases.reduce((a, c) => a + c.width, 0) + 8 * (canvases.length - 1);
-  const h = Math.max(...canvases.map((c) => c.height));
+/** `text` broken at spaces into lines no wider than `max` pixels in ctx's font (a long word is cut). */
+export function wrapText(ctx, text, max) {
+  const lines = [];
+  let line = '';
+  for (const word of text.split(' ')) {
+    const joined = line ? `${line} ${word}` : word;
+    if (ctx.measureText(joined).width <= max || !line) line = joined;
+    else {
+      lines.push(line);
+      line = word;
+    }
+    while (ctx.measureText(line).width > max && line.length > 1) {
+      let k = line.length - 1;
+      while (k > 1 && ctx.measureText(line.slice(0, k)).width > max) k--;
+      lines.push(line.slice(0, k));
+      line = line.slice(k);
+    }
+  }
+  lines.push(line);
+  return lines;
+}
+
+/**
+ * The boards side by side on one canvas, with a caption under them: the
+ * build, the date of the export and the page's URL (every parameter).
+ */
+export function boardsImage(canvases, p = provenance()) {
+  const w = Math.max(480, canvases.reduce((a, c) => a + c.width, 0) + 8 * (canvases.length - 1));
+  const boardsH = Math.max(...canvases.map((c) => c.height));
   const out = document.createElement('canvas');
-  out.width = w;
-  out.height = h;
   const ctx = out.getContext('2d');
+  const font = '13px system-ui, sans-serif';
+  ctx.font = font;
+  const lines = [provenanceLine(p), ...wrapText(ctx, p.command, w - 16)];
+  out.width = w;
+  out.height = boardsH + 10 + 18 * lines.length;
   ctx.fillStyle = '#0b0e11';
-  ctx.fillRect(0, 0, w, h);
+  ctx.fillRect(0, 0, out.width, out.height);
   let x = 0;
   for (const c of canvases) {
     ctx.drawImage(c, x, 0);
     x += c.width + 8;
   }
-  out.toBlob((blob) => blob && download(blob, `${name}.png`), 'image/png');
+  ctx.font = font;
+  ctx.fillStyle = '#c9d1d9';
+  ctx.textBaseline = 'top';
+  lines.forEach((l, i) => ctx.fillText(l, 8, boardsH + 6 + 18 * i));
+  return out;
+}
+
+/** Saves the boards side by side as one PNG, with its caption. */
+export function exportPng(canvases, name) {
+  boardsImage(canvases).toBlob((blob) => blob && download(blob, `${name}.png`), 'image/png');
 }
 
 /** Saves an episode file: `runs` as the engine exported them, `query` the full URL query. */
@@ -45,6 +85,7 @@ export function exportEpisode({ engineVersion, query, runs, name }) {
     format: EPISODE_FORMAT,
     version: EPISODE_VERSION,
     engine: engineVersion,
+    provenance: provenance(),
     url_query: query,
     cells: 'path entries are 0-based cell indices y*n + x; users see (x+1, y+1)',
     episode: main,

@@ -41,6 +41,14 @@ export function schema() {
   return schemaCache;
 }
 
+let stylesCache = null;
+
+/** How chart series are drawn: [{ colour, dash, marker }] for the first 100 series, as the CLI's charts (after loadEngine). */
+export function seriesStyles() {
+  stylesCache ??= wasm.seriesStyles(100);
+  return stylesCache;
+}
+
 /** Turns a caught exception into a readable message, using the Rust panic text if there is one. */
 export function describeError(err) {
   if (err instanceof WebAssembly.RuntimeError && compiled) {

@@ -1,6 +1,8 @@
 // Small DOM and number-formatting helpers shared by the page's modules.
 // Text only: nothing here writes HTML.
 
+import { setBuild } from './provenance.js';
+
 export const $ = (id) => document.getElementById(id);
 
 /** Replaces a <select>'s options with `[value, label]` pairs (text only). */
@@ -26,6 +28,14 @@ export function showMessage(text, { append = false } = {}) {
   const el = $('message');
   el.textContent = append && !el.hidden && el.textContent ? `${el.textContent}\n${text}` : text;
   el.hidden = !text;
+}
+
+/** Shows the engine's build (version and commit) in the header and the footer, and keeps it for exports. */
+export function showBuild(engine) {
+  const b = engine.buildInfo();
+  setBuild(b);
+  setText('version', `v${b.version}`);
+  setText('build-info', `Engine: ${b.label}.`);
 }
 
 /** The page cannot run: says why, in the message and the badge. Returns null. */
