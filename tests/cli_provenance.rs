@@ -7,6 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use torus_search::experiment::provenance::{is_utc_date, shell_line, strip, COMMIT, VERSION};
+use torus_search::experiment::FORMAT_VERSION;
 
 fn cli(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_torus-search"))
@@ -243,7 +244,11 @@ fn merges_warn_about_other_commits_and_refuse_damaged_files_without_writing() {
     let bad: Vec<(&str, String, &str)> = vec![
         (
             "format.json",
-            text.replacen("\"format_version\":1", "\"format_version\":7", 1),
+            text.replacen(
+                &format!("\"format_version\":{FORMAT_VERSION}"),
+                "\"format_version\":7",
+                1,
+            ),
             "format_version 7 is not supported",
         ),
         (
