@@ -652,7 +652,7 @@ fn presets_apply_before_the_other_flags() {
         (Some(3.0), Some("uct"))
     );
     let v = json(&["run", "--preset", "none", "--dry-run"]);
-    assert_eq!(v["final"], "visits");
+    assert_eq!(v["final"], "auto");
     assert_eq!(v["belief"], "posterior");
     let list = ok(&["experiment", "--list"]);
     assert!(

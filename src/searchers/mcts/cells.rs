@@ -15,16 +15,19 @@
 //! persists across the searcher's moves unless reset each move, as some of
 //! the paper's scripts do.
 //!
-//! **Decay** (beyond the paper): when a move searches new cells, the
-//! practice targets come from a new posterior, and the table's means were
-//! earned on targets that are no longer possible: they value searched
-//! cells, and with ~10⁵ pass-through visits they outweigh the new evidence
-//! for the rest of the trial, trapping the searcher in 2- and 4-cycles
-//! (`docs/model.md`, "Departures that keep MCTS out of traps"). Each count is then
-//! multiplied by the decay factor (rounded down, the reward sum scaled with
-//! it so that each mean is kept): old evidence fades geometrically, by the
-//! number of moves that changed the belief. A decay of 1 is the paper's
-//! table exactly; 0 clears it whenever the belief changes.
+//! **Decay** (beyond the paper): when a move searches cells that hold
+//! planning mass, the practice targets come from a new posterior, and part
+//! of the table's evidence was earned on targets that are no longer
+//! possible: it values searched cells, and with ~10⁵ pass-through visits it
+//! outweighs the new evidence for the rest of the trial, trapping the
+//! searcher in 2- and 4-cycles (`docs/model.md`, "Departures that keep MCTS
+//! out of traps"). Each count is then multiplied by decay^(lost / 1%),
+//! where `lost` is the share of the unsearched mass the move searched
+//! (rounded down, the reward sum scaled with it so that each mean is
+//! kept): old evidence fades with what the belief lost. Searching cells
+//! without mass changes no practice target, so at a delta prior nothing
+//! fades and the table's means converge as Theorem 1 needs. A decay of 1 is
+//! the paper's table exactly; 0 clears it whenever mass is searched.
 
 use super::uct::argmax_random;
 use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
@@ -48,7 +51,8 @@ pub struct CellTable {
     /// its first `Mark::len` slots; sized once for the longest possible loop.
     touched: Vec<(u32, u32)>,
     selected: [u32; 4],
-    /// Counts are multiplied by this when the belief changes (1 = never).
+    /// Counts are multiplied by this for each 1% of the unsearched mass a
+    /// move searches (1 = never).
     decay: f64,
     /// The loop in flight: the selected move and neighbour, the distinct
     /// cells marked, the rollout's steps and outcome.
@@ -62,13 +66,19 @@ pub struct CellTable {
 }
 
 /// What the table's counts mean, for people.
-const NOTE: &str = "cells (the paper's table): N counts every loop that passes through a cell, picked or not, over the whole trial (decayed when the belief changes); picks are this decision's selections; passes are this decision's pass-through visits";
+const NOTE: &str = "cells (the paper's table): N counts every loop that passes through a cell, picked or not, over the whole trial (decayed as searched cells lose the belief's mass); picks are this decision's selections; passes are this decision's pass-through visits";
 
-/// The default decay factor (`EXPERIMENTS.md`, "The decay of the cells
-/// table", has the measurements it was chosen by).
+/// The default decay factor: the share of the table's counts kept for
+/// each 1% of the unsearched mass a move searches (`EXPERIMENTS.md`, "The
+/// default searcher", has the measurements it was chosen by).
 pub const DEFAULT_DECAY: f64 = 0.8;
 
-/// The factor the table's counts are multiplied by when the belief changes.
+/// The share of the belief's unsearched mass whose search multiplies the
+/// table's counts by `decay` once: 1%.
+pub const LOST_UNIT: f64 = 0.01;
+
+/// The factor the table's counts are multiplied by for each 1% of the
+/// unsearched mass a move searches.
 pub static DECAY: Param = Param {
     key: "decay",
     label: "Table decay",
@@ -78,7 +88,7 @@ pub static DECAY: Param = Param {
         min_open: false,
     },
     default: Value::Float(DEFAULT_DECAY),
-    help: "cells: when a move searches new cells, each table count is multiplied by this (rounded down, the mean kept), so stale statistics fade; 1 keeps them for ever (the paper), 0 clears them",
+    help: "cells: for each 1% of the unsearched prior mass a move searches, each table count is multiplied by this (rounded down, the mean kept), so statistics fade as their practice targets become impossible, and not at all at a delta prior; 1 keeps them for ever (the paper), 0 clears them whenever mass is searched",
     aliases: &[],
     choice_labels: &[],
     advanced: true,
@@ -204,18 +214,20 @@ impl Stats for CellTable {
 
     fn advance(&mut self, _m: Move) {}
 
-    /// Fades the table by the decay factor: each count n becomes ⌊decay·n⌋
-    /// and its reward sum keeps its mean (a count that reaches 0 drops its
-    /// reward). A decay of 1 leaves the table as it is.
-    fn belief_changed(&mut self) {
-        if self.decay >= 1.0 {
+    /// Fades the table by what the belief lost: each count n becomes
+    /// ⌊f·n⌋ with f = decay^(lost / 1%), and its reward sum keeps its mean
+    /// (a count that reaches 0 drops its reward). A decay of 1, or nothing
+    /// lost, leaves the table as it is.
+    fn belief_changed(&mut self, lost: f64) {
+        let f = libm::pow(self.decay, lost / LOST_UNIT);
+        if f >= 1.0 {
             return;
         }
         for (v, r) in self.visits.iter_mut().zip(&mut self.reward) {
             if *v == 0 {
                 continue;
             }
-            let kept = libm::floor(*v as f64 * self.decay) as u32;
+            let kept = libm::floor(*v as f64 * f) as u32;
             *r = if kept == 0 {
                 0.0
             } else {
@@ -480,7 +492,7 @@ mod tests {
     #[test]
     fn decay_fades_counts_and_keeps_means() {
         let mut t = table(0.8);
-        t.belief_changed();
+        t.belief_changed(LOST_UNIT);
         // ⌊0.8·n⌋: a single visit is forgotten, larger counts shrink.
         assert_eq!(t.visits, [0, 0, 8, 800]);
         assert_eq!(t.reward[1], 0.0);
@@ -488,22 +500,40 @@ mod tests {
         assert!((t.reward[3] / 800.0 - 0.03).abs() < 1e-15);
         // Geometric: ten more changes leave ⌊…⌊800·0.8⌋…⌋ of the count.
         for _ in 0..10 {
-            t.belief_changed();
+            t.belief_changed(LOST_UNIT);
         }
         assert_eq!(t.visits[3], 84);
         assert!((t.reward[3] / 84.0 - 0.03).abs() < 1e-12);
     }
 
     #[test]
+    fn decay_follows_the_share_of_mass_searched() {
+        // f = decay^(lost / 1%): 2% lost is two 1% steps, 0.5% half of one,
+        // nothing lost keeps the table even at decay 0.
+        let mut t = table(0.8);
+        t.belief_changed(0.02);
+        assert_eq!(t.visits, [0, 0, 6, 640]);
+        let mut t = table(0.25);
+        t.belief_changed(0.005);
+        assert_eq!(t.visits, [0, 0, 5, 500]);
+        assert!((t.reward[3] / 500.0 - 0.03).abs() < 1e-15);
+        for decay in [0.0, 0.8] {
+            let mut t = table(decay);
+            t.belief_changed(0.0);
+            assert_eq!((t.visits, t.reward), (table(1.0).visits, table(1.0).reward));
+        }
+    }
+
+    #[test]
     fn decay_one_is_the_papers_table_and_zero_clears_it() {
         let mut keep = table(1.0);
-        keep.belief_changed();
+        keep.belief_changed(LOST_UNIT);
         assert_eq!(
             (keep.visits, keep.reward),
             (table(1.0).visits, table(1.0).reward)
         );
         let mut clear = table(0.0);
-        clear.belief_changed();
+        clear.belief_changed(LOST_UNIT);
         assert_eq!((clear.visits, clear.reward), (vec![0; 4], vec![0.0; 4]));
         // Out-of-range factors are clamped; NaN keeps the table.
         assert_eq!(CellTable::with_decay(1, f64::NAN).decay, 1.0);

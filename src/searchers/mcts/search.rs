@@ -113,10 +113,10 @@ pub static FINAL: Param = Param {
     key: "final",
     label: "Final move rule",
     kind: ParamKind::Choice(|| FinalRule::NAMES.to_vec()),
-    default: Value::Name(Cow::Borrowed("visits")),
-    help: "how the real move is chosen: visits (picked most this decision), mean (best mean reward) or uct (best UCT value)",
+    default: Value::Name(Cow::Borrowed("auto")),
+    help: "how the real move is chosen: visits (picked most this decision), mean (best mean reward), uct (best UCT value) or auto (the variant's rule: uct for the per-cell tables cells and code, visits for tree)",
     aliases: &[],
-    choice_labels: &["most picks", "best mean", "best UCT"],
+    choice_labels: &["most picks", "best mean", "best UCT", "the variant's rule"],
     advanced: false,
 };
 
@@ -259,11 +259,20 @@ pub static INFO: SearcherInfo = SearcherInfo {
 /// the belief MCTS, whose returns are exact expectations of a path it can
 /// follow, so it plays the child through which the best one was found (its
 /// scaled value, the `mean` rule).
+///
+/// `auto` is the variant's own rule. The per-cell tables (`cells`, `code`)
+/// play the best UCT value, the move both of the paper's proofs pick: their
+/// counts are mostly rollouts passing through, and rewards 1/τ of about
+/// 10⁻³ leave UCT's selection to those counts, so the most selected child
+/// is where fewest rollouts pass (ahead, whatever the target), and more
+/// loops only make that choice surer. A tree's counts are its selections:
+/// it plays the most selected child.
 pub fn final_rule(s: &Settings) -> FinalRule {
-    if variant(s) == Variant::Pomcp {
-        FinalRule::Mean
-    } else {
-        s.choice(&FINAL)
+    match (variant(s), s.choice(&FINAL)) {
+        (Variant::Pomcp, _) => FinalRule::Mean,
+        (Variant::Cells | Variant::Code, FinalRule::Auto) => FinalRule::Uct,
+        (Variant::Tree, FinalRule::Auto) => FinalRule::Visits,
+        (_, rule) => rule,
     }
 }
 
@@ -288,6 +297,8 @@ pub struct Mcts<S: Stats> {
     cells: usize,
     /// The belief's generation at the last decision.
     generation: Option<u64>,
+    /// The belief's unsearched planning mass at the last decision.
+    mass: Option<f64>,
     /// Moves in a row that searched no new cell.
     stalled: u32,
     /// Escape after this many stalled moves (0 = never).
@@ -322,6 +333,7 @@ impl<S: Stats> Mcts<S> {
             reset_each_move: s.flag(&RESET_EACH_MOVE),
             cells: setup.torus.cells(),
             generation: None,
+            mass: None,
             stalled: 0,
             escape: s.u32(&ESCAPE),
             escape_to: None,
@@ -367,9 +379,13 @@ impl<S: Stats> Mcts<S> {
             }
         }
         w.budget.open();
-        if self.generation.is_some_and(|g| g != generation) {
-            self.stats.belief_changed();
+        // Searched cells without mass (all but the target's at a delta
+        // prior) change no practice target: nothing is stale.
+        let mass = w.belief.remaining();
+        if let Some(before) = self.mass.filter(|&b| mass < b) {
+            self.stats.belief_changed(1.0 - mass / before);
         }
+        self.mass = Some(mass);
         self.generation = Some(generation);
         self.stats
             .begin_decision(w.torus, w.pos, self.reset_each_move);

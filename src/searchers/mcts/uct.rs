@@ -15,6 +15,8 @@ named_enum! {
         Mean = "mean",
         /// The child with the best UCT value (the paper's Gaussian code).
         Uct = "uct",
+        /// The variant's own rule (`search::final_rule` resolves it).
+        Auto = "auto",
     }
 }
 
@@ -58,7 +60,9 @@ fn final_values(view: &DecisionView, rule: FinalRule) -> [f64; 4] {
                 ch[i].mean
             }
         }
-        FinalRule::Uct => ch[i].uct,
+        // `auto` is resolved by `search::final_rule`; a bare view reads it
+        // as the per-cell tables' rule.
+        FinalRule::Uct | FinalRule::Auto => ch[i].uct,
     })
 }
 

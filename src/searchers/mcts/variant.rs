@@ -84,9 +84,10 @@ pub trait Stats: Clone {
     /// Visit counts per cell of a lattice of `cells` cells (`scratch` is
     /// room to project a tree into).
     fn visits<'a>(&'a self, cells: usize, scratch: &'a mut Vec<u32>) -> &'a [u32];
-    /// The belief changed since the last decision (a move searched new
-    /// cells): statistics gathered for the old belief are now stale.
-    fn belief_changed(&mut self) {}
+    /// Since the last decision the moves searched a share `lost` (in
+    /// (0, 1]) of the belief's unsearched planning mass: that share of the
+    /// practice targets the statistics were gathered on is now impossible.
+    fn belief_changed(&mut self, _lost: f64) {}
     /// The cells the statistics mean to enter next (see [`Searcher::intent`]).
     fn intent(&self) -> &[u32] {
         &[]
