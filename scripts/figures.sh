@@ -19,9 +19,9 @@ scale=${TRIALS_SCALE:-1}
 declare -A trials=(
   [priors]=10000 [delta]=100 [loops]=30 [decision-time]=20 [uniform]=50
   [nsarw-convergence]=10 [known-n20]=20 [belief]=30 [levy-mu]=1000
-  [c-sweep]=50 [sigma-sweep]=30 [goals]=100
+  [c-sweep]=50 [sigma-sweep]=30 [sigma-tail]=30 [goals]=100
 )
-order=(priors delta known-n20 levy-mu c-sweep decision-time uniform loops belief nsarw-convergence sigma-sweep goals)
+order=(priors delta known-n20 levy-mu c-sweep decision-time uniform loops belief nsarw-convergence sigma-sweep sigma-tail goals)
 names=("$@")
 [[ ${#names[@]} -eq 0 ]] && names=("${order[@]}")
 for name in "${names[@]}"; do

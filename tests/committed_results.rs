@@ -40,8 +40,37 @@ fn problem(name: &str) -> Option<String> {
         }
         Err(e) => return Some(format!("{stem}.csv: {e}")),
     }
-    if !dir.join(format!("{stem}.svg")).exists() {
-        return Some(format!("{stem}.svg is missing"));
+    let tables = [
+        ("trials.csv", set.stamped_trials_csv(&p)),
+        ("paired.csv", set.stamped_paired_csv(&p)),
+    ];
+    for (ext, want) in tables {
+        match std::fs::read_to_string(dir.join(format!("{stem}.{ext}"))) {
+            Ok(got) if got == want => {}
+            Ok(_) => return Some(format!("{stem}.{ext}: not what this build writes")),
+            Err(e) => return Some(format!("{stem}.{ext}: {e}")),
+        }
+    }
+    for ext in ["svg", "png"] {
+        if !dir.join(format!("{stem}.{ext}")).exists() {
+            return Some(format!("{stem}.{ext} is missing"));
+        }
+    }
+    out_of_range(name, &set)
+}
+
+/// An interval of a committed result that leaves the range of its trials,
+/// or an excess interval below 0, if any.
+fn out_of_range(name: &str, set: &torus_search::experiment::ResultSet) -> Option<String> {
+    for (i, s) in set.stats().iter().enumerate() {
+        let (lo, hi) = (s.spread.min, s.spread.max);
+        let m = &s.mean;
+        if s.n > 1 && !(lo <= m.lo && m.hi <= hi && m.covers(m.estimate)) {
+            return Some(format!("{name}: point {i}: mean {m:?} leaves [{lo}, {hi}]"));
+        }
+        if let Some(e) = s.excess_mean.filter(|e| e.lo < 0.0) {
+            return Some(format!("{name}: point {i}: excess interval {e:?} below 0"));
+        }
     }
     None
 }
