@@ -614,7 +614,7 @@ fn bad_experiments_exit_2_with_one_line() {
     let cases: &[(&[&str], &str)] = &[
         (
             &["experiment", "sigma"],
-            "experiment must be one of priors, sigma-sweep, delta, loops, decision-time, goals, uniform, nsarw-convergence, known-n20, belief, levy-mu, c-sweep, custom, got \"sigma\"",
+            "experiment must be one of priors, sigma-sweep, delta, loops, decision-time, sigma-tail, goals, uniform, nsarw-convergence, known-n20, belief, levy-mu, c-sweep, custom, got \"sigma\"",
         ),
         (&["experiment"], "an experiment name is required"),
         (&["experiment", "delta", "--n", "0"], "--n must be an integer in 3..=1024, got 0"),
