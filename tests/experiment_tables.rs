@@ -245,6 +245,8 @@ fn experiments_md_tables_are_the_committed_results() {
     if std::env::var_os("UPDATE_TABLES").is_some() {
         // The blocks that could be made are written; the rest keep their text.
         std::fs::write(&path, &made).unwrap();
+        assert!(errors.is_empty(), "{}", errors.join("\n"));
+        return;
     }
     assert!(errors.is_empty(), "{}", errors.join("\n"));
     if made != doc {
