@@ -39,7 +39,7 @@ help:
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
 	@echo "make soak    the browser soak test for SOAK_MINUTES (default 10) minutes"
-	@echo "make figures every experiment's figure into docs/figures/ (about 30 min on 2 cores)"
+	@echo "make figures every experiment's figure into docs/figures/ (about 35 min on 2 cores)"
 	@echo "make clean   remove www/pkg, www/vendor, dist, target/e2e (not target/)"
 
 setup:
