@@ -11,13 +11,13 @@ import sys
 import pandas as pd
 
 name = sys.argv[1]
-t = pd.read_csv(f"{name}.trials.csv")
+t = pd.read_csv(f"{name}.trials.csv", comment="#")
 means = t.pivot_table(index="sigma", columns="series", values="steps", aggfunc="mean")
 print(means.round(1).to_string())
 steps = t.pivot_table(index=["sigma", "trial"], columns="series", values="steps")
 diff = steps["Lévy flight"] - steps["MCTS, RW rollouts"]
 print(diff.groupby("sigma").agg(mean="mean", lfs_more=lambda d: (d > 0).sum()).to_string())
 
-points = pd.read_csv(f"{name}.csv").set_index("index")
+points = pd.read_csv(f"{name}.csv", comment="#").set_index("index")
 mine = t.groupby("point")["value"].mean()
 sys.exit(0 if ((mine - points["mean"]).abs() < 1e-9).all() else 1)

@@ -361,7 +361,7 @@ fn experiment_help_shows_the_values_experiments_use() {
         line("c")
     );
     assert!(
-        line("final").contains("[default: uct, from the paper-code preset; the schema's: visits]")
+        line("final").contains("[default: uct, from the paper-code preset; the schema's: auto]")
     );
     assert!(line("decay").contains("[default: 1, from the paper-code preset"));
     assert!(line("escape").contains("[default: 0, from the paper-code preset"));
