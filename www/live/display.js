@@ -17,6 +17,8 @@ import { StepsChart } from './steps-chart.js';
 import { reducedMotion } from './motion.js';
 import { bindFound } from './panels/found.js';
 import { Tour } from './tour.js';
+import { updateNarration } from './panels/narrate.js';
+import { TimelineBar } from './timeline-bar.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
@@ -34,6 +36,8 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   bindFound({ controller, live, races });
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
+  const timelineBar = new TimelineBar((action, arg) => live.playback(action, arg));
+  controller.on('message', (text) => showMessage(text));
   const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis
   let lastTs = 0;
@@ -62,7 +66,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     setText('play', 'Restart');
     boards.notice('Stopped: see the message. Restart to try again.');
   });
-  controller.on('frame', ({ state, meter, runs }) => {
+  controller.on('frame', ({ state, meter, runs, timeline }) => {
     const ts = performance.now();
     if (state === 'running' && lastTs) runTime += Math.min(0.25, (ts - lastTs) / 1000);
     lastTs = state === 'running' ? ts : 0;
@@ -77,8 +81,10 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
       describedTs = ts;
       setText('board-desc', describeRun(runs[0]));
     }
+    timelineBar.update(timeline, runs[0].deliberates);
     if (state === 'running' && ts - panelsTs < PANEL_MS) return;
     panelsTs = ts;
+    updateNarration(runs[0]);
     setText('view-desc', describeRun(runs[0]));
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);

@@ -146,9 +146,14 @@ export class LiveState {
     else this.controller.dispatch({ type: 'redraw' });
   }
 
-  /** A playback button or key. */
-  playback(action) {
-    if (action === 'restart') this.restart();
+  /** A playback button or key, or a move on the timeline (`arg`: { move } for 'seek'). */
+  playback(action, arg) {
+    const back = { backMove: 'move', backLoop: 'loop', backPhase: 'phase' }[action];
+    if (back) this.controller.dispatch({ type: 'back', unit: back });
+    else if (action === 'start') this.controller.dispatch({ type: 'seek', point: { move: 0 } });
+    else if (action === 'end') this.controller.dispatch({ type: 'seek', point: this.controller.timeline?.end ?? { move: 0 } });
+    else if (action === 'seek') this.controller.dispatch({ type: 'seek', point: { move: arg.move } });
+    else if (action === 'restart') this.restart();
     else if (action === 'newSeed') this.edit('seed', String(crypto.getRandomValues(new Uint32Array(1))[0]));
     else if (action === 'toggle' && this.controller.state === 'error') this.restart(true);
     else this.controller.dispatch({ type: action });

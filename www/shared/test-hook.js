@@ -9,7 +9,16 @@
 //                      target, optimal, status, steps, pathLen, work, rolloutSteps, scores,
 //                      intent, planning }
 //   path(i = 0)        run i's path so far (cells, start first)
-//   dispatch(cmd)      a controller command (see www/live/controller.js)
+//   dispatch(cmd)      a controller command (see www/live/controller.js), e.g. { type: 'stepPhase' }
+//   phase()            the last phase the first run did, select | expand | rollout | backup, or null
+//                      (between loops, or not stepped phase by phase)
+//   timeline()         the engine's point of the first run { move, loop, phase, end }, or null
+//   seek(point)        seeks to { move, loop, phase } (a 'seek' command); resolves to { ok, error }
+//                      once the page has drawn that point
+//   back(unit)         one phase | loop | move back, as seek
+//   tree(query, run)   the engine's tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
+//                      move, visits, value, … }], total_nodes }), or null for a searcher without one
+//   narration()        the narration line's text
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   resets()           how many resets the controller has had (a click that restarted the run adds one)
@@ -36,6 +45,13 @@
 //     config(index)      that point's config
 
 import { experimentSpec } from './url-state.js';
+
+/** Resolves to `done`'s answer once two animation frames have passed (the page has drawn it). */
+async function shown(done) {
+  const answer = await done;
+  await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+  return answer;
+}
 
 export function installTestHook({ controller, engine, batch, experiments, showView, boards }) {
   // What each drawn frame showed, once a test asks (bounded, so a long soak
@@ -83,6 +99,12 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
       })),
     path: (i = 0) => controller.runs[i]?.path() ?? [],
     dispatch: (cmd) => controller.dispatch(cmd),
+    phase: () => controller.runs[0]?.frame.point?.phase ?? null,
+    timeline: () => (controller.timeline ? structuredClone(controller.timeline) : null),
+    seek: (point) => shown(controller.dispatch({ type: 'seek', point })),
+    back: (unit) => shown(controller.dispatch({ type: 'back', unit })),
+    tree: async (query = {}, run = 0) => (await controller.dispatch({ type: 'request', request: 'tree', payload: { run, query } }))?.tree ?? null,
+    narration: () => document.getElementById('narration').textContent,
     request: (type, payload) => controller.dispatch({ type: 'request', request: type, payload }),
     engine,
     resets: () => controller.resets,

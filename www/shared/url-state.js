@@ -11,6 +11,9 @@ function shown(raw) {
   return s.length > 40 ? `${s.slice(0, 40)}…` : s;
 }
 
+/** Speeds of one phase every so many seconds (the worker steps a phase when that long has passed). */
+export const PHASE_SPEEDS = ['2s', '1s', '0.5s'];
+
 const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
 /**
@@ -37,8 +40,8 @@ export function viewSpecs(races) {
   return {
     speed: {
       def: 10,
-      help: 'loops per frame, an integer in 1..=1000000, or max',
-      parse: (s) => (s === 'max' ? 'max' : /^\d{1,7}$/.test(s) && +s >= 1 && +s <= 1e6 ? +s : undefined),
+      help: 'loops per frame, an integer in 1..=1000000, or max, or one phase every 2s, 1s or 0.5s',
+      parse: (s) => (s === 'max' || PHASE_SPEEDS.includes(s) ? s : /^\d{1,7}$/.test(s) && +s >= 1 && +s <= 1e6 ? +s : undefined),
       text: String,
     },
     autoplay: {

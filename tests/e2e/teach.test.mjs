@@ -1,0 +1,137 @@
+// End-to-end tests of teaching MCTS on the page (issue 44): a loop a phase
+// at a time with its narration, the decision panel's two highlights, going
+// back over the timeline (buttons, keys, scrubber, seek), and the tree the
+// engine reports against the decision panel. Helpers: page-helpers.mjs.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { expectText, mainPath, state, text, useApp, withApp } from './page-helpers.mjs';
+
+useApp();
+
+const ORDER = ['select', 'expand', 'rollout', 'backup'];
+const WORDS = { select: 'Select:', expand: 'Expand:', rollout: 'Roll out:', backup: 'Back up:' };
+const point = (page) => page.evaluate(() => {
+  const t = window.torusTest.timeline();
+  return t && { move: t.move, loop: t.loop, phase: t.phase };
+});
+/** Waits until the page shows timeline point `want` (the panels draw on the next animation frame). */
+async function atPoint(page, want) {
+  await page.waitForFunction((w) => {
+    const t = window.torusTest.timeline();
+    return t && t.move === w.move && t.loop === w.loop && t.phase === (w.phase ?? null);
+  }, want, { timeout: 10_000 }).catch(async () => assert.deepEqual(await point(page), { phase: null, ...want }));
+}
+
+test('a loop phase by phase: the strip, the narration and the decision panel follow the engine', { timeout: 90_000 }, async () => {
+  await withApp('?autoplay=0&n=11&sigma=2&loops=20&seed=3&start=2,2', async (page) => {
+    assert.equal(await page.evaluate(() => window.torusTest.phase()), null);
+    for (let i = 0; i < 12; i++) {
+      // Button, key p, and Shift+→ in turn.
+      if (i % 3 === 0) await page.click('#step-phase');
+      else if (i % 3 === 1) await page.keyboard.press('p');
+      else await page.keyboard.press('Shift+ArrowRight');
+      const want = ORDER[i % 4];
+      await atPoint(page, { move: 0, loop: Math.floor(i / 4), phase: want });
+      assert.equal(await page.evaluate(() => window.torusTest.phase()), want);
+      await page.waitForFunction((w) => document.getElementById('narration').textContent.startsWith(w), WORDS[want], { timeout: 5_000 });
+      assert.equal(await page.locator('#phase-strip li.now').getAttribute('data-phase'), want);
+    }
+    const said = await text(page, '#narration');
+    assert.match(said, /^Back up: reward \d/);
+    assert.match(said, /N \d+ → \d+/);
+    await page.click('#step-phase');
+    await page.waitForFunction(() => /so the loop tries (Up|Right|Down|Left)/.test(document.getElementById('narration').textContent), null, { timeout: 5_000 });
+    // The decision panel marks the final rule's move (◆) and the highest UCT (▲) apart, and explains pass-through visits.
+    const note = await text(page, '#decision-note');
+    assert.match(note, /◆ If the decision ended now, the final rule/);
+    assert.match(note, /▲ Highest UCT: /);
+    assert.match(note, /pass-through visits/);
+    assert.ok(await page.locator('#decision tr.uct-best').count() >= 1);
+    assert.ok(await page.locator('#decision tr.chosen').count() >= 1);
+    // One phase every 0.5 s: a second of play advances a few phases, not many loops.
+    const before = await point(page);
+    await page.evaluate(() => window.torusTest.dispatch({ type: 'speed', speed: '0.5s' }));
+    await page.click('#play');
+    await page.waitForFunction((b) => {
+      const t = window.torusTest.timeline();
+      return t.loop !== b.loop || t.phase !== b.phase;
+    }, before, { timeout: 10_000 });
+    await page.waitForTimeout(1000);
+    await page.click('#play');
+    const after = await point(page);
+    assert.equal(after.move, 0);
+    assert.ok(after.loop - before.loop <= 2, `${JSON.stringify(before)} → ${JSON.stringify(after)}: phases, not loops`);
+  });
+});
+
+test('going back: buttons, keys and the scrubber; seeking back then forward shows the same run', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0&n=16&sigma=3&loops=10&seed=4&variant=tree', async (page) => {
+    for (let i = 0; i < 6; i++) await page.click('#step-move');
+    for (let i = 0; i < 5; i++) await page.click('#step-phase');
+    await atPoint(page, { move: 6, loop: 1, phase: 'select' });
+    const forward = await mainPath(page);
+    const note = await text(page, '#decision-note');
+    const said = await text(page, '#narration');
+    assert.equal(forward.length, 7);
+    // Seek into the middle of a loop.
+    assert.deepEqual(await page.evaluate(() => window.torusTest.seek({ move: 2, loop: 3, phase: 'rollout' })), { ok: true });
+    await atPoint(page, { move: 2, loop: 3, phase: 'rollout' });
+    assert.deepEqual(await mainPath(page), forward.slice(0, 3));
+    assert.equal(await page.locator('#phase-strip li.now').getAttribute('data-phase'), 'rollout');
+    // End: the furthest point, the same path, panel and narration.
+    await page.keyboard.press('End');
+    await atPoint(page, { move: 6, loop: 1, phase: 'select' });
+    assert.deepEqual(await mainPath(page), forward);
+    await expectText(page, '#decision-note', note);
+    await expectText(page, '#narration', said);
+    // Back a move (to this decision's start, then the one before), a loop, a phase.
+    await page.keyboard.press('ArrowLeft');
+    await atPoint(page, { move: 6, loop: 0 });
+    await page.click('#back-move');
+    await atPoint(page, { move: 5, loop: 0 });
+    await page.keyboard.press('Control+ArrowLeft');
+    await atPoint(page, { move: 4, loop: 9 });
+    await page.keyboard.press('Shift+ArrowLeft');
+    await atPoint(page, { move: 4, loop: 8, phase: 'rollout' });
+    await page.click('#back-phase');
+    await atPoint(page, { move: 4, loop: 8, phase: 'expand' });
+    // Forward again from there: the same moves as before.
+    await page.click('#step-move');
+    await atPoint(page, { move: 5, loop: 0 });
+    assert.deepEqual(await mainPath(page), forward.slice(0, 6));
+    // The scrubber seeks to a move; Home to the start.
+    await page.locator('#scrub').fill('3');
+    await atPoint(page, { move: 3, loop: 0 });
+    await page.locator('#view-0').focus();
+    await page.keyboard.press('Home');
+    await atPoint(page, { move: 0, loop: 0 });
+    assert.equal((await mainPath(page)).length, 1);
+    // A seek past the end: a message naming the range; the run stays where it was.
+    const answer = await page.evaluate(() => window.torusTest.seek({ move: 40 }));
+    assert.equal(answer.ok, false);
+    assert.match(answer.error, /move 40.*past the end.*up to move 6, loop 1, phase select/);
+    assert.match(await text(page, '#message'), /past the end of the run so far/);
+    assert.equal(await state(page), 'paused');
+    await atPoint(page, { move: 0, loop: 0 });
+    assert.match(await text(page, '#tl-point'), /^move 0, loop 0 · reached move 6, loop 1, Select$/);
+  });
+});
+
+test('the tree the engine reports matches the decision panel', { timeout: 60_000 }, async () => {
+  await withApp('?autoplay=0&n=16&sigma=3&loops=30&seed=4&variant=tree', async (page) => {
+    for (let i = 0; i < 9; i++) await page.click('#step-loop');
+    await page.waitForFunction(() => window.torusTest.runs()[0].work >= 9, null, { timeout: 10_000 });
+    const tree = await page.evaluate(() => window.torusTest.tree());
+    assert.equal(tree.shape, 'tree');
+    const root = tree.nodes[0];
+    assert.equal(root.parent, null);
+    assert.equal(root.visits, 9);
+    const children = tree.nodes.filter((n) => n.parent === 0);
+    assert.equal(children.reduce((a, n) => a + n.visits, 0), 9);
+    // The decision panel's visits column, row by move.
+    await page.waitForFunction(() => /N\(v\) = 9,/.test(document.getElementById('decision-note').textContent), null, { timeout: 5_000 });
+    const shown = await page.evaluate(() => [...document.querySelectorAll('#decision tbody tr')].map((tr) => Number(tr.cells[1].firstChild.nodeValue)));
+    const byMove = { up: 0, right: 1, down: 2, left: 3 };
+    for (const n of children) assert.equal(shown[byMove[n.move]], n.visits, `${n.move}`);
+  });
+});
