@@ -26,6 +26,8 @@ export class Boards {
     this.renderers = [0, 1].map((i) => new Renderer($(`view-${i}`)));
     this.motion = [0, 1].map(() => ({ glide: new Glide(), trails: new TraceKeeper(), pulse: new Pulse() }));
     this.selected = -1;
+    this.treeLine = null; // cells of the tree node in focus (tree-panel.js), drawn on board 0
+    this.onHoverCell = null; // (cell | −1) => void: the pointer over board 0's cells
     const ro = new ResizeObserver(() => {
       this.fit();
       onResize();
@@ -55,7 +57,15 @@ export class Boards {
         onStroke(idx, true);
       } else down = { x: e.clientX, y: e.clientY, idx };
     });
+    let hovered = -1;
+    const hover = (idx) => {
+      if (i !== 0 || idx === hovered) return;
+      hovered = idx;
+      this.onHoverCell?.(idx);
+    };
+    canvas.addEventListener('pointerleave', () => hover(-1));
     canvas.addEventListener('pointermove', (e) => {
+      if (!stroke) hover(renderer.cellAt(e.clientX, e.clientY));
       if (!stroke) return;
       const idx = renderer.cellAt(e.clientX, e.clientY);
       if (idx < 0 || idx === last) return;
@@ -148,6 +158,7 @@ export class Boards {
       intent: opts.intent && running ? run.intent : null,
       decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
       selected: i === 0 ? this.selected : -1,
+      treeLine: i === 0 && running ? this.treeLine : null,
       grid: opts.grid,
       tiling: opts.tiling,
     };

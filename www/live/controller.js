@@ -25,6 +25,8 @@
 //                                (motion on the board: a glide, a fade, a pulse)
 //   export                       resolves to each run's export (config, path, result)
 //   request { request, payload } a raw worker request (benchmarks, tests)
+//   ask { request, payload }     a raw worker request whose failure is the caller's (rejects; the
+//                                page stays as it was): the tree view's queries
 // Events (on(name, fn)):
 //   state (state, prev) · runs (runViews) · frame ({ state, meter, runs, timeline }) · error (err)
 //   · message (text): a command refused (a seek past the end), the runs unchanged
@@ -114,6 +116,8 @@ export class Controller {
         return this.send('export').then((a) => a?.runs ?? null);
       case 'request':
         return this.send(cmd.request, cmd.payload ?? {});
+      case 'ask':
+        return this.session.request(cmd.request, cmd.payload ?? {});
       default:
         throw new Error(`unknown command ${JSON.stringify(cmd.type)}`);
     }

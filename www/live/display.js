@@ -19,6 +19,7 @@ import { bindFound } from './panels/found.js';
 import { Tour } from './tour.js';
 import { updateNarration } from './panels/narrate.js';
 import { TimelineBar } from './timeline-bar.js';
+import { TreePanel } from './tree-panel.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
@@ -37,6 +38,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
   const timelineBar = new TimelineBar((action, arg) => live.playback(action, arg));
+  const tree = new TreePanel({ controller, boards, lut: engine.paletteLut('viridis') });
   controller.on('message', (text) => showMessage(text));
   const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis
@@ -46,6 +48,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   controller.on('runs', (runs) => {
     runTime = 0;
     chart.reset(runs.map((r, i) => (runs.length > 1 ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : r.label)));
+    tree.reset();
     boards.setup(runs);
     legend.reset();
     drawn.clear();
@@ -74,7 +77,8 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     const opts = viewState.options();
     const requested = viewState.layerRequests();
     const { pending, animating } = boards.draw(runs, requested, opts, { preview: painter.preview, now: ts, live: state === 'running', still: reducedMotion() });
-    if (pending || animating) controller.dispatch({ type: 'animate' });
+    const growing = tree.update(runs[0], { running: state === 'running', now: ts, still: reducedMotion() });
+    if (pending || animating || growing) controller.dispatch({ type: 'animate' });
     for (const m of boards.drawnMarks(0)) drawn.add(m);
     // The board's description for screen readers changes at most once a second.
     if (ts - describedTs >= (state === 'running' ? DESCRIBE_MS : 0)) {

@@ -39,11 +39,15 @@ export class TimelineBar {
     const max = String(end.move);
     if (scrub.max !== max) scrub.max = max;
     if (document.activeElement !== scrub) scrub.value = String(timeline?.move ?? 0);
-    const text = `${pointText(timeline)} · reached ${pointText(end)}`;
-    if (text !== this.shown) {
+    const text = pointText(timeline);
+    const reached = `To the furthest point reached: ${pointText(end)} (End)`;
+    if (text !== this.shown || reached !== this.reached) {
       this.shown = text;
+      this.reached = reached;
       setText('tl-point', text);
-      scrub.setAttribute('aria-valuetext', pointText(timeline));
+      scrub.setAttribute('aria-valuetext', text);
+      $('tl-end').title = reached;
+      $('tl-end').setAttribute('aria-label', reached);
     }
     $('back-loop').disabled = !deliberates;
     $('back-phase').disabled = !deliberates;
