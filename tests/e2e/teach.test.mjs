@@ -136,3 +136,52 @@ test('the tree the engine reports matches the decision panel', { timeout: 60_000
     for (const n of children) assert.equal(shown[byMove[n.move]], n.visits, `${n.move}`);
   });
 });
+
+test('the tree view beside the lattice: linked both ways, cut by visits or to the best line; a focus gone gets a message', { timeout: 90_000 }, async () => {
+  await withApp('?autoplay=0&n=11&sigma=2&loops=40&seed=3&start=2,2&variant=tree', async (page) => {
+    for (let i = 0; i < 20; i++) await page.click('#step-loop');
+    for (let i = 0; i < 3; i++) await page.click('#step-phase');
+    await page.waitForFunction(() => {
+      const t = window.torusTest.treeView();
+      return t.shown && t.nodes === 22 && t.at; // the root, 20 loops' nodes and the one just expanded
+    }, null, { timeout: 10_000 });
+    // Beside the board at this size: to its right, its top within the board's height.
+    const [board, panel] = await page.evaluate(() => ['view-0', 'tree-canvas'].map((id) => document.getElementById(id).getBoundingClientRect().toJSON()));
+    assert.ok(panel.left >= board.right && panel.top < board.bottom, JSON.stringify({ board, panel }));
+    const before = await page.evaluate(() => window.torusTest.treeView());
+    // Hovering a node: its words, with the engine's UCT split for a root child, and its line on the lattice.
+    await page.mouse.move(...before.at);
+    await page.waitForFunction(() => window.torusTest.drawn().marks.includes('treeLine'), null, { timeout: 5_000 });
+    assert.match(await text(page, '#tree-info'), /^(Up|Right|Down|Left) \(depth 1\), cell \(\d+, \d+\): N = \d+, Q\/N = [\d.]+, picked \d+ times this decision\. UCT = [\d.]+ \+ [\d.]+ = [\d.]+\.$/);
+    await page.waitForFunction(() => window.torusTest.legend().marks.includes('treeLine'), null, { timeout: 5_000 });
+    // Hovering that node's cell on the lattice marks the nodes that reach it (the node among them).
+    const cellPoint = await page.evaluate((cell) => {
+      const c = document.getElementById('view-0').getBoundingClientRect();
+      const n = window.torusTest.runs()[0].n;
+      return [c.left + ((cell % n) + 0.5) * (c.width / n), c.top + (Math.floor(cell / n) + 0.5) * (c.height / n)];
+    }, before.cell);
+    await page.mouse.move(...cellPoint);
+    await page.waitForFunction(() => window.torusTest.treeView().marked.includes(1), null, { timeout: 5_000 });
+    assert.match(await text(page, '#tree-info'), /nodes? of the tree reach/);
+    // A visit threshold and the best line cut the tree; the engine says how many are shown.
+    await page.fill('#tree-min', '3');
+    await page.locator('#tree-min').dispatchEvent('change');
+    await page.waitForFunction((n) => window.torusTest.treeView().nodes < n, before.nodes, { timeout: 5_000 });
+    const cut = await page.evaluate(() => window.torusTest.tree({ min_visits: 3 }));
+    assert.ok(cut.nodes.every((n, i) => i === 0 || n.visits >= 3));
+    assert.equal(await page.evaluate(() => window.torusTest.treeView().nodes), cut.nodes.length);
+    assert.match(await text(page, '#tree-count'), new RegExp(`^${cut.nodes.length} of ${before.nodes} nodes shown$`));
+    await page.fill('#tree-min', '0');
+    await page.locator('#tree-min').dispatchEvent('change');
+    await page.check('#tree-best');
+    const best = await page.evaluate(() => window.torusTest.tree({ focus: 'best' }));
+    await page.waitForFunction((n) => window.torusTest.treeView().nodes === n, best.nodes.length, { timeout: 5_000 });
+    // A focus on a node the tree does not hold: a message, the whole tree again, the run as it was.
+    const path = await mainPath(page);
+    await page.evaluate(() => window.torusTest.treeFocus(999999));
+    await page.waitForFunction(() => /Tree view: tree focus: node 999999 is not in the tree/.test(document.getElementById('message').textContent), null, { timeout: 5_000 });
+    await page.waitForFunction(() => window.torusTest.treeView().focus === 'all', null, { timeout: 5_000 });
+    assert.equal(await state(page), 'paused');
+    assert.deepEqual(await mainPath(page), path);
+  });
+});

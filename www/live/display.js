@@ -103,4 +103,5 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   });
   // After the drawing above: the tour points at where this frame drew the searcher.
   new Tour({ controller, boards });
+  return { tree };
 }

@@ -210,6 +210,15 @@ export class TreePanel {
   }
 }
 
+/** What the tree view shows, for tests: nodes laid out and drawn, the node in focus, the nodes marked, where node `i` is drawn (client px). */
+export function treeViewState(panel, i = 1) {
+  const v = panel.view;
+  const rect = v.canvas.getBoundingClientRect();
+  const k = rect.width / Math.max(1, v.canvas.width);
+  const at = v.pos && i < (v.layout?.count ?? 0) && Number.isFinite(v.pos[2 * i]) ? [rect.left + v.pos[2 * i] * k, rect.top + v.pos[2 * i + 1] * k] : null;
+  return { shown: !$('tree-panel').hidden, nodes: v.layout?.count ?? 0, drawn: v.drawnCount, hover: v.hover, marked: [...v.marked], focus: panel.focus, cell: v.cols?.cell[i] ?? -1, at };
+}
+
 /** The value ramp of the legend. */
 function drawRamp(canvas, lut) {
   canvas.width = 256;

@@ -19,6 +19,9 @@
 //   tree(query, run)   the engine's tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
 //                      move, visits, value, … }], total_nodes }), or null for a searcher without one
 //   narration()        the narration line's text
+//   treeView(i = 1)    the tree panel: { shown, nodes, drawn, hover, marked: [node indices], focus,
+//                      cell: node i's cell, at: node i's client point or null }
+//   treeFocus(focus)   shows 'all', 'best' or a node id's subtree (as a click on a node)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   resets()           how many resets the controller has had (a click that restarted the run adds one)
@@ -45,6 +48,7 @@
 //     config(index)      that point's config
 
 import { experimentSpec } from './url-state.js';
+import { treeViewState } from '../live/tree-panel.js';
 
 /** Resolves to `done`'s answer once two animation frames have passed (the page has drawn it). */
 async function shown(done) {
@@ -53,7 +57,7 @@ async function shown(done) {
   return answer;
 }
 
-export function installTestHook({ controller, engine, batch, experiments, showView, boards }) {
+export function installTestHook({ controller, engine, batch, experiments, showView, boards, tree }) {
   // What each drawn frame showed, once a test asks (bounded, so a long soak
   // does not grow it): the reset ticket, and per run its configured start,
   // the first path cell and the position.
@@ -105,6 +109,8 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     back: (unit) => shown(controller.dispatch({ type: 'back', unit })),
     tree: async (query = {}, run = 0) => (await controller.dispatch({ type: 'request', request: 'tree', payload: { run, query } }))?.tree ?? null,
     narration: () => document.getElementById('narration').textContent,
+    treeView: (i = 1) => treeViewState(tree, i),
+    treeFocus: (focus) => tree.setFocus(focus),
     request: (type, payload) => controller.dispatch({ type: 'request', request: type, payload }),
     engine,
     resets: () => controller.resets,
