@@ -34,14 +34,14 @@ async function boot() {
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });
   const viewState = new ViewState(schema, { redraw: () => controller.dispatch({ type: 'view', view: viewState.frameView() }), traces: () => live.tracesChanged() });
-  const controls = new Controls({ races, onRace: (race) => live.change({ view: { race } }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
+  const controls = new Controls({ races, onRace: (race) => live.change({ view: race }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
   const views = new PageViews({ page: start.page, controller, query: { live: () => live.query(), experiments: () => experiments.query() }, autoplay });
   const live = new LiveState({ engine, schema, races, controller, painter, form, controls, viewState, config: start.config, view: start.view, onUrl: () => views.updateUrl() });
   const boards = new Boards(gridInput({ form, painter, live, controller, boards: () => boards, revealed: () => viewState.options().reveal }));
   const { tree } = bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls });
   bindReplay({ engine, schema, races, controller, live, boards, link: () => (views.updateUrl(), location.href) });
   bindPresets({ engine, live, viewState });
-  const batch = new BatchPanel(engine, schema, () => live.config);
+  const batch = new BatchPanel(engine, schema, () => live.config, () => live.opponent());
   const experiments = new ExperimentsView({
     engine, schema, state: start.experiment, module: engineModule(),
     onUrl: () => views.page === 'experiments' && views.updateUrl(),

@@ -185,3 +185,43 @@ test('the tree view beside the lattice: linked both ways, cut by visits or to th
     assert.deepEqual(await mainPath(page), path);
   });
 });
+
+test('race any two configurations: titles name what differs, and a paired batch on the same targets', { timeout: 120_000 }, async () => {
+  await withApp('?autoplay=0&n=16&sigma=3&loops=20&seed=4&vs=rollout%3Dlevy', async (page) => {
+    const runs = await page.evaluate(() => window.torusTest.runs());
+    assert.equal(runs.length, 2);
+    assert.deepEqual([runs[0].config.rollout, runs[1].config.rollout], ['rw', 'levy']);
+    assert.equal(runs[0].target, runs[1].target);
+    const titles = await page.evaluate(() => [...document.querySelectorAll('.board-title')].map((e) => e.textContent));
+    assert.deepEqual(titles, ['A: rollout=rw — MCTS cells · rw rollouts · L=20', 'B: rollout=levy — MCTS cells · levy rollouts · L=20']);
+    await page.fill('#batch-trials', '6');
+    await page.fill('#batch-cap', '400');
+    await page.click('#batch-run');
+    await page.waitForFunction(() => document.body.dataset.batch === 'done', null, { timeout: 90_000 });
+    const p = await page.evaluate(() => window.torusTest.batch.paired());
+    assert.equal(p.trials, 6);
+    assert.equal(p.a_wins + p.ties + p.b_wins, 6);
+    // The engine's own summary of the same pairs, run here.
+    const again = await page.evaluate(() => {
+      const [a, b] = window.torusTest.runs().map((r) => ({ ...r.config, step_cap: 400, keep_traces: 0 }));
+      const e = window.torusTest.engine;
+      const flat = [];
+      for (let i = 0; i < 6; i++) flat.push(...e.runPairedTrial(a, b, i));
+      return e.summarizePaired(Float64Array.from(flat));
+    });
+    assert.deepEqual(p, again);
+    assert.ok(await page.locator('#batch-paired').isVisible());
+    assert.match(await text(page, '#batch-paired-note'), /^Race: A against B on the same 6 targets: /);
+    assert.match(await page.locator('#batch-paired').innerText(), /A faster \/ tie \/ B faster\s+\d+ \/ \d+ \/ \d+/);
+    // Another change through the form: the same searcher with another c.
+    await page.fill('#vs', 'c=0.5');
+    await page.locator('#vs').dispatchEvent('change');
+    await page.waitForFunction(() => window.torusTest.runs()[1]?.config.c === 0.5, null, { timeout: 10_000 });
+    assert.match(await page.evaluate(() => location.search), /vs=c%3D0\.5/);
+    await expectText(page, '#board-1 .board-title', 'B: c=0.5 — MCTS cells · rw rollouts · L=20');
+  });
+  await withApp('?autoplay=0&n=16&vs=cc%3D1', async (page) => {
+    assert.match(await text(page, '#message'), /Invalid vs="cc=1": .*got cc\. Using no changes\./);
+    assert.equal((await page.evaluate(() => window.torusTest.runs())).length, 1);
+  });
+});

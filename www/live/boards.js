@@ -89,15 +89,15 @@ export class Boards {
     for (const r of this.renderers) r.canvas.dataset.pointer = mode;
   }
 
-  /** Shows one board, or two side by side with titles and the scoreboard. */
-  setup(runs) {
+  /** Shows one board, or two side by side with `titles` and the scoreboard. */
+  setup(runs, titles = runs.map((r) => r.label)) {
     const race = runs.length > 1;
     $('boards').classList.toggle('race', race);
     $('board-1').hidden = !race;
     $('scoreboard').hidden = !race;
     this.selected = -1;
     runs.forEach((r, i) => {
-      setText($(`board-${i}`).querySelector('.board-title'), race ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : '');
+      setText($(`board-${i}`).querySelector('.board-title'), race ? titles[i] : '');
       this.motion[i].trails.reset();
     });
     requestAnimationFrame(() => this.fit());

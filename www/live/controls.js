@@ -29,14 +29,15 @@ export class Controls {
   /**
    * @param {object} o
    * @param {object[]} o.races                  race options (url-state.js raceOptions)
-   * @param {(race) => void} o.onRace           the race opponent changed
+   * @param {(view) => void} o.onRace           the race opponent changed: { race } or { vs }
    * @param {(speed) => void} o.onSpeed         loops per frame, or 'max'
    * @param {(action) => void} o.onPlayback     toggle | stepMove | stepLoop | stepPhase | restart | newSeed
    *                                            | backMove | backLoop | backPhase | start | end
    */
   constructor({ races, onRace, onSpeed, onPlayback }) {
     fillSelect($('race'), races.map((r) => [r.id, r.label]));
-    $('race').addEventListener('change', (e) => onRace(e.target.value));
+    $('race').addEventListener('change', (e) => onRace({ race: e.target.value }));
+    $('vs').addEventListener('change', (e) => onRace({ vs: e.target.value.trim().replace(/\s+/g, ' ') }));
     $('speed').addEventListener('input', (e) => {
       const s = SPEEDS[Number(e.target.value)];
       showSpeed(s);
@@ -62,6 +63,7 @@ export class Controls {
   /** Shows the view parameters: the race opponent and the speed. */
   sync(view) {
     $('race').value = view.race;
+    $('vs').value = view.vs ?? '';
     $('speed').value = speedIndex(view.speed);
     showSpeed(view.speed);
   }

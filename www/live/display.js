@@ -27,6 +27,28 @@ const PANEL_MS = 100;
 const DESCRIBE_MS = 1000;
 
 /**
+ * Each board's title: its label alone, or in a race "A: …" and "B: …"
+ * naming what differs between the two (the engine's configDifferences),
+ * with the searcher's label when the searchers differ.
+ */
+export function raceTitles(engine, runs) {
+  if (runs.length < 2) return runs.map((r) => r.label);
+  const diffs = engine.configDifferences(runs[0].config, runs[1].config).filter((d) => d.key !== 'keep_traces');
+  // The searcher's label already names these.
+  const named = new Set(['searcher', 'variant', 'rollout', 'loops']);
+  const searcherDiffers = diffs.some((d) => d.key === 'searcher' || d.key === 'variant');
+  return runs.map((r, i) => {
+    const side = i === 0 ? 'a' : 'b';
+    const what = diffs.filter((d) => !searcherDiffers || !named.has(d.key)).map((d) => `${d.key}=${shortValue(d[side])}`).join(' ');
+    const text = searcherDiffers ? [r.label, what].filter(Boolean).join(' · ') : what ? `${what} — ${r.label}` : r.label;
+    return `${i === 0 ? 'A' : 'B'}: ${text}`;
+  });
+}
+
+/** A value as text, long decimals cut to 4 significant digits. */
+const shortValue = (v) => (/^-?\d+\.\d{5,}$/.test(v) ? String(Number(Number(v).toPrecision(4))) : v);
+
+/**
  * @param {object} o
  * @param {object} o.engine, o.schema   the wasm module (palettes) and its schema (layers)
  * @param {object} o.controller   the playback state machine (its events)
@@ -47,9 +69,10 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   let describedTs = -Infinity;
   controller.on('runs', (runs) => {
     runTime = 0;
-    chart.reset(runs.map((r, i) => (runs.length > 1 ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : r.label)));
+    const titles = raceTitles(engine, runs);
+    chart.reset(titles);
     tree.reset();
-    boards.setup(runs);
+    boards.setup(runs, titles);
     legend.reset();
     drawn.clear();
     describedTs = -Infinity;

@@ -4,7 +4,7 @@
 // form, writes the URL and restarts the runs. Every edit, preset, opened
 // experiment point, replay, race and speed goes through it.
 
-import { writeUrl } from '../shared/url-state.js';
+import { writeUrl, opponentConfig } from '../shared/url-state.js';
 import { showMessage } from '../shared/ui.js';
 import { reducedMotion } from './motion.js';
 
@@ -98,13 +98,28 @@ export class LiveState {
     return writeUrl(this.engine, this.config, this.view, { full, races: this.races });
   }
 
-  /** The engine configs of the runs: the config, and the race opponent's, keeping the traces the view draws. */
+  /**
+   * The engine configs of the runs: the config, and the race opponent's
+   * (the race option's searcher, then the `vs` changes: any parameters),
+   * keeping the traces the view draws.
+   */
   runConfigs() {
     this.kept = this.viewState.traceCount(this.config.keep_traces);
     const main = this.engine.setParam(this.config, 'keep_traces', String(this.kept));
+    const opponent = this.opponent(main);
+    return opponent ? [main, opponent] : [main];
+  }
+
+  /** The race opponent of `main` (the config by default), or null when not racing; a bad change shows a message and is left out. */
+  opponent(main = this.config) {
     const race = this.races.find((r) => r.id === this.view.race);
-    if (!race?.pairs.length) return [main];
-    return [main, race.pairs.reduce((c, [key, v]) => this.engine.setParam(c, key, v), main)];
+    if (!race?.pairs.length && !this.view.vs) return null;
+    try {
+      return opponentConfig(this.engine, main, race?.pairs ?? [], this.view.vs);
+    } catch (err) {
+      showMessage(`Race: the opponent's change "${this.view.vs}" is not valid: ${err.message}.`);
+      return race?.pairs.length ? opponentConfig(this.engine, main, race.pairs, '') : null;
+    }
   }
 
   /**

@@ -31,7 +31,8 @@
 //   legend()           what the legend names now: { marks: [data-mark], layers: [data-layer] }
 //   watchFrames()      starts a fresh frameLog(): per drawn frame { ticket, ts, runs: [{ start,
 //                      configStart, path0, position, status }], marks and at (board 0's: see drawn) }
-//   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers
+//   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers;
+//                      batch.paired() a race's paired summary (the engine's summarizePaired), or null
 //   view()             which view is shown: live | experiments; show(view) switches
 //   experiments        the Experiments view:
 //     state()            its state (name, trials, seed, preset, params, sweep, series); setState(s)
@@ -121,6 +122,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     }),
     batch: {
       results: () => batch.results,
+      paired: () => batch.paired,
       usePool: (k) => batch.usePool(k),
       killWorker: (i) => batch.pool?.killWorker(i) ?? false,
       replaced: () => batch.pool?.replaced ?? 0,

@@ -50,6 +50,12 @@ export function viewSpecs(races) {
       parse: (s) => (Object.hasOwn(BOOL, s) ? BOOL[s] : undefined),
       text: (v) => (v ? '1' : '0'),
     },
+    vs: {
+      def: '',
+      help: 'the race opponent\'s parameters that differ, as key=value pairs separated by spaces (e.g. rollout=levy c=0.5)',
+      parse: (s) => (s.length <= 400 && /^[\w.,:=+ -]*$/.test(s) ? s.trim().replace(/\s+/g, ' ') : undefined),
+      text: String,
+    },
     race: {
       def: '',
       help: `one of ${races.filter((r) => r.id).map((r) => r.id).join(', ')}, or empty`,
@@ -86,7 +92,37 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
     const def = known.get(e.field)?.default;
     messages.push(`Invalid ${e.field}=${JSON.stringify(shown(e.value))}: allowed ${e.allowed}. Using the default ${e.field}=${def || '(none)'}.`);
   }
+  if (view.vs) {
+    const bad = opponentError(engine, config, view.vs);
+    if (bad) {
+      messages.push(`Invalid vs=${JSON.stringify(shown(view.vs))}: ${bad}. Using no changes.`);
+      view.vs = '';
+    }
+  }
   return { config, view, messages };
+}
+
+/** `vs` text ("key=value key=value") as [key, value] pairs. */
+export function opponentPairs(vs) {
+  return (vs ?? '').split(' ').filter(Boolean).map((kv) => {
+    const at = kv.indexOf('=');
+    return at < 0 ? [kv, ''] : [kv.slice(0, at), kv.slice(at + 1)];
+  });
+}
+
+/** The race opponent: `config` with the race option's `pairs`, then the `vs` pairs, set through the engine (throws naming a bad one). */
+export function opponentConfig(engine, config, pairs, vs) {
+  return [...pairs, ...opponentPairs(vs)].reduce((c, [key, v]) => engine.setParam(c, key, v), config);
+}
+
+/** Why `vs` cannot make an opponent of `config` (the engine's message), or ''. */
+export function opponentError(engine, config, vs) {
+  try {
+    opponentConfig(engine, config, [], vs);
+    return '';
+  } catch (err) {
+    return err.message;
+  }
 }
 
 /**
