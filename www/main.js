@@ -33,7 +33,7 @@ async function boot() {
   const controller = new Controller({ session: new SearchSession(engineModule()) });
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });
-  const viewState = new ViewState(schema, { redraw: () => controller.dispatch({ type: 'view', view: viewState.frameView() }), traces: () => live.tracesChanged() });
+  const viewState = new ViewState(schema, { redraw: () => (controller.dispatch({ type: 'view', view: viewState.frameView() }), views.updateUrl()), traces: () => (live.tracesChanged(), views.updateUrl()) });
   const controls = new Controls({ races, onRace: (race) => live.change({ view: race }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
   const views = new PageViews({ page: start.page, controller, query: { live: () => live.query(), experiments: () => experiments.query() }, autoplay });
   const live = new LiveState({ engine, schema, races, controller, painter, form, controls, viewState, config: start.config, view: start.view, onUrl: () => views.updateUrl() });

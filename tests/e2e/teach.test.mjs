@@ -225,3 +225,50 @@ test('race any two configurations: titles name what differs, and a paired batch 
     assert.equal((await page.evaluate(() => window.torusTest.runs())).length, 1);
   });
 });
+
+test('a link holds the whole picture: layers, the race, the point in the run; reopened paused, and Restart does not play', { timeout: 120_000 }, async () => {
+  let link;
+  let want;
+  await withApp('?autoplay=0&n=16&sigma=3&loops=10&seed=4&variant=tree&vs=c%3D0.5', async (page) => {
+    for (let i = 0; i < 4; i++) await page.click('#step-move');
+    for (let i = 0; i < 6; i++) await page.click('#step-phase');
+    await atPoint(page, { move: 4, loop: 1, phase: 'expand' });
+    await page.click('#layer-visits');
+    await page.click('#layer-path');
+    await page.waitForFunction(() => /at=4\.1\.expand/.test(location.search), null, { timeout: 5_000 });
+    link = await page.evaluate(() => location.href);
+    want = await page.evaluate(() => ({
+      runs: window.torusTest.runs().map((r) => ({ config: r.config, steps: r.steps })),
+      paths: [window.torusTest.path(0), window.torusTest.path(1)],
+      layers: window.torusTest.drawn().layers,
+      narration: window.torusTest.narration(),
+      note: document.getElementById('decision-note').textContent,
+    }));
+  });
+  assert.match(link, /vs=c%3D0\.5/);
+  assert.match(link, /show=[^&]*visits/);
+  await withApp(link.slice(link.indexOf('?')), async (page) => {
+    await atPoint(page, { move: 4, loop: 1, phase: 'expand' });
+    assert.equal(await state(page), 'paused');
+    const got = await page.evaluate(() => ({
+      runs: window.torusTest.runs().map((r) => ({ config: r.config, steps: r.steps })),
+      paths: [window.torusTest.path(0), window.torusTest.path(1)],
+      layers: window.torusTest.drawn().layers,
+    }));
+    assert.deepEqual(got, { runs: want.runs, paths: want.paths, layers: want.layers });
+    assert.ok(!(await page.isChecked('#layer-path')));
+    await expectText(page, '#narration', want.narration);
+    await expectText(page, '#decision-note', want.note);
+    // Restart keeps it waiting: a link that shows a stopped run never plays by itself.
+    await page.keyboard.press('r');
+    await page.waitForFunction(() => window.torusTest.resets() > 1 && window.torusTest.timeline()?.move === 0, null, { timeout: 10_000 });
+    await page.waitForTimeout(300);
+    assert.equal(await state(page), 'paused');
+    assert.equal((await mainPath(page)).length, 1);
+  });
+  // A point the run never reaches: the engine's message, the run at its end.
+  await withApp('?n=12&sigma=2&loops=10&seed=2&at=900', async (page) => {
+    await page.waitForFunction(() => /Could not open the run at at=900: seek to move 900/.test(document.getElementById('message').textContent), null, { timeout: 30_000 });
+    assert.notEqual(await state(page), 'running');
+  });
+});

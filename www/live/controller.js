@@ -15,6 +15,7 @@
 //   stepLoop | stepMove          one MCTS loop / one real move on each unfinished run (pauses first)
 //   stepPhase                    one phase of the loop in flight (select, expand, roll out, back up)
 //   seek { point }               every run to a timeline point { move, loop, phase } it has reached
+//   advanceTo { point }          steps forward to a point not reached yet, then seeks it (a link's `at`)
 //   back { unit }                one phase | loop | move back (seek and back pause first, and bring
 //                                a found or capped run back to paused; a bad point leaves the runs
 //                                as they were and resolves to { ok: false, error })
@@ -100,6 +101,8 @@ export class Controller {
         return this.travel('seek', { point: cmd.point });
       case 'back':
         return this.travel('back', { unit: cmd.unit });
+      case 'advanceTo':
+        return this.travel('advanceTo', { point: cmd.point });
       case 'speed':
         this.speed = cmd.speed;
         this.send('speed', { speed: cmd.speed });

@@ -56,6 +56,18 @@ export function viewSpecs(races) {
       parse: (s) => (s.length <= 400 && /^[\w.,:=+ -]*$/.test(s) ? s.trim().replace(/\s+/g, ' ') : undefined),
       text: String,
     },
+    show: {
+      def: '',
+      help: 'the layers and options shown, as names separated by commas (e.g. visits,path,rollouts), or empty for the default',
+      parse: (s) => (s.length <= 300 && /^[a-z,-]*$/.test(s) ? s : undefined),
+      text: String,
+    },
+    at: {
+      def: '',
+      help: 'a point of the run to open at, paused: MOVE, MOVE.LOOP or MOVE.LOOP.PHASE (phase: select, expand, rollout or backup)',
+      parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
+      text: String,
+    },
     race: {
       def: '',
       help: `one of ${races.filter((r) => r.id).map((r) => r.id).join(', ')}, or empty`,
@@ -100,6 +112,19 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
     }
   }
   return { config, view, messages };
+}
+
+/** A timeline point as a link's `at` ("12.3.rollout"), or '' for the start. */
+export function pointToAt(p) {
+  if (!p || (!p.move && !p.loop && !p.phase)) return '';
+  return [p.move, ...(p.loop || p.phase ? [p.loop] : []), ...(p.phase ? [p.phase] : [])].join('.');
+}
+
+/** A link's `at` as a timeline point { move, loop, phase } (null for ''). */
+export function atToPoint(at) {
+  if (!at) return null;
+  const [move, loop = '0', phase = null] = at.split('.');
+  return { move: Number(move), loop: Number(loop), phase };
 }
 
 /** `vs` text ("key=value key=value") as [key, value] pairs. */

@@ -16,6 +16,8 @@
 //   stepPhase { requests }              one phase of the loop in flight on each run; answers { frames, steps }
 //   seek { point, requests }            every run to a timeline point { move, loop, phase }; answers { frames }
 //   back { unit, requests }             one phase | loop | move back; answers { frames }
+//   advanceTo { point, requests }       steps the runs forward as far as `point` (moves, loops,
+//                                       phases), then seeks it exactly; answers { frames }
 //   tree { run, query }                 the decision's tree (Race.tree); treeColumns { run, query } as columns
 //                                       (a move a planner has yet to plan is made in calls of bounded
 //                                       length, answering other requests between them)
@@ -195,6 +197,21 @@ const HANDLERS = {
   },
   back(msg) {
     st.race.back(msg.unit);
+    return frames(msg.requests);
+  },
+  advanceTo(msg) {
+    const { race } = st;
+    const p = { loop: 0, phase: null, ...msg.point };
+    const at = () => race.timeline().end;
+    const before = (t) => t.move < p.move || (t.move === p.move && t.loop < p.loop);
+    while (at().move < p.move && race.running()) race.stepMove();
+    while (before(at()) && race.running()) race.stepLoop();
+    for (let k = 0; p.phase && k < 4 && race.running(); k++) {
+      const t = at();
+      if (t.move !== p.move || t.loop !== p.loop || t.phase === p.phase) break;
+      race.stepPhase();
+    }
+    race.seek(p);
     return frames(msg.requests);
   },
   tree(msg) {
