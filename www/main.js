@@ -40,7 +40,7 @@ async function boot() {
   const boards = new Boards(gridInput({ form, painter, live, controller, boards: () => boards, revealed: () => viewState.options().reveal }));
   const { tree } = bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls });
   bindReplay({ engine, schema, races, controller, live, boards, link: () => (views.updateUrl(), location.href) });
-  bindPresets({ engine, live, viewState });
+  bindPresets({ engine, schema, live, viewState });
   const batch = new BatchPanel(engine, schema, () => live.config, () => live.opponent());
   const experiments = new ExperimentsView({
     engine, schema, state: start.experiment, module: engineModule(),

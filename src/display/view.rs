@@ -215,6 +215,8 @@ pub struct Frame<'a> {
     pub status: Status,
     /// Real moves so far.
     pub steps: u32,
+    /// Moves onto a cell the searcher had already stood on.
+    pub revisits: u32,
     /// The searcher's cell.
     pub position: u32,
     /// Loops in the decision under way (or the last one).
@@ -422,6 +424,7 @@ impl FrameBuilder {
         Frame {
             status: ep.status(),
             steps: ep.steps(),
+            revisits: ep.revisits(),
             position: ep.position(),
             loops_done: ep.loops_done(),
             work: ep.work(),

@@ -6,7 +6,7 @@
 //   state()            the controller's state: idle | running | paused | found | capped | error
 //   speed()            the controller's speed: loops per frame, or 'max'
 //   runs()             a snapshot per run: { label, config, searcher, deliberates, n, start,
-//                      target, optimal, status, steps, pathLen, work, rolloutSteps, scores,
+//                      target, optimal, status, steps, revisits, pathLen, work, rolloutSteps, scores,
 //                      intent, planning }
 //   path(i = 0)        run i's path so far (cells, start first)
 //   dispatch(cmd)      a controller command (see www/live/controller.js), e.g. { type: 'stepPhase' }
@@ -95,6 +95,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
         optimal: r.optimal,
         status: r.status(),
         steps: r.frame.steps,
+        revisits: r.frame.revisits,
         pathLen: r.pathLen,
         work: r.work(),
         rolloutSteps: r.rolloutSteps(),

@@ -14,6 +14,8 @@ function shown(raw) {
 /** Speeds of one phase every so many seconds (the worker steps a phase when that long has passed). */
 export const PHASE_SPEEDS = ['2s', '1s', '0.5s'];
 
+import { LESSONS } from '../live/lessons.js';
+
 const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
 /**
@@ -66,6 +68,12 @@ export function viewSpecs(races) {
       def: '',
       help: 'a point of the run to open at, paused: MOVE, MOVE.LOOP or MOVE.LOOP.PHASE (phase: select, expand, rollout or backup)',
       parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
+      text: String,
+    },
+    lesson: {
+      def: '',
+      help: `one of ${LESSONS.map((l) => l.id).join(', ')}, or empty`,
+      parse: (s) => (s === '' || LESSONS.some((l) => l.id === s) ? s : undefined),
       text: String,
     },
     race: {
