@@ -235,7 +235,8 @@ test('a link holds the whole picture: layers, the race, the point in the run; re
     await atPoint(page, { move: 4, loop: 1, phase: 'expand' });
     await page.click('#layer-visits');
     await page.click('#layer-path');
-    await page.waitForFunction(() => /at=4\.1\.expand/.test(location.search), null, { timeout: 5_000 });
+    await page.check('#tree-best');
+    await page.waitForFunction(() => /at=4\.1\.expand/.test(location.search) && /tree=best/.test(location.search), null, { timeout: 5_000 });
     link = await page.evaluate(() => location.href);
     want = await page.evaluate(() => ({
       runs: window.torusTest.runs().map((r) => ({ config: r.config, steps: r.steps })),
@@ -257,6 +258,8 @@ test('a link holds the whole picture: layers, the race, the point in the run; re
     }));
     assert.deepEqual(got, { runs: want.runs, paths: want.paths, layers: want.layers });
     assert.ok(!(await page.isChecked('#layer-path')));
+    assert.ok(await page.isChecked('#tree-best'));
+    assert.equal(await page.evaluate(() => window.torusTest.treeView().focus), 'best');
     await expectText(page, '#narration', want.narration);
     await expectText(page, '#decision-note', want.note);
     // Restart keeps it waiting: a link that shows a stopped run never plays by itself.

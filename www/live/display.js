@@ -60,7 +60,10 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
   const timelineBar = new TimelineBar((action, arg) => live.playback(action, arg));
-  const tree = new TreePanel({ controller, boards, lut: engine.paletteLut('viridis') });
+  const tree = new TreePanel({
+    controller, boards, lut: engine.paletteLut('viridis'), focus: live.view.tree,
+    onFocus: (f) => live.change({ view: { tree: f === 'all' ? '' : String(f) }, restart: false }),
+  });
   controller.on('message', (text) => showMessage(text));
   const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis

@@ -24,15 +24,18 @@ export class TreePanel {
    * @param {object} o.controller  the playback state machine (its 'ask' command)
    * @param {object} o.boards      the boards (the line drawn on board 0, the hovered cell)
    * @param {Uint8Array} o.lut     the value ramp (a palette's 256×RGBA table)
+   * @param {string} [o.focus]     a link's focus ('best' or a node id), applied to the first runs
+   * @param {(focus) => void} [o.onFocus]  the focus changed ('all', 'best' or a node id)
    */
-  constructor({ controller, boards, lut }) {
-    Object.assign(this, { controller, boards });
+  constructor({ controller, boards, lut, focus = '', onFocus = () => {} }) {
+    Object.assign(this, { controller, boards, onFocus });
+    this.pending = focus === 'best' ? 'best' : focus ? Number(focus) : null;
     this.view = new TreeView($('tree-canvas'), lut);
     this.key = '';
     this.inflight = false;
     this.fetchedAt = 0;
     this.has = true; // the run has a tree (false: hide the panel)
-    this.focus = 'all';
+    this.focus = undefined; // 'all', 'best' or a node id, from the first reset on
     this.run = null;
     drawRamp($('tree-ramp'), lut);
     $('tree-best').addEventListener('change', (e) => this.setFocus(e.target.checked ? 'best' : 'all'));
@@ -128,10 +131,15 @@ export class TreePanel {
   }
 
   setFocus(focus) {
+    this.showFocus(focus);
+    this.onFocus(focus);
+    this.refetch();
+  }
+
+  showFocus(focus) {
     this.focus = focus;
     $('tree-best').checked = focus === 'best';
     $('tree-all').hidden = typeof focus !== 'number';
-    this.refetch();
   }
 
   refetch() {
@@ -151,9 +159,11 @@ export class TreePanel {
   /** Fresh runs: forget the tree and the focus. */
   reset() {
     this.has = true;
-    this.focus = 'all';
-    $('tree-best').checked = false;
-    $('tree-all').hidden = true;
+    const was = this.focus;
+    this.showFocus(this.pending ?? 'all');
+    this.pending = null;
+    // Fresh runs have a fresh tree: a focus on one of the old one's nodes goes (and leaves the link).
+    if (was !== undefined && was !== this.focus && this.focus === 'all') this.onFocus('all');
     this.view.setTree(null);
     this.view.hover = -1;
     this.boards.treeLine = null;
@@ -201,8 +211,8 @@ export class TreePanel {
     } catch (err) {
       // A focus on a node that went with a real move: say so, show the whole tree.
       showMessage(`Tree view: ${err.message}. Showing the whole tree.`);
-      this.focus = 'all';
-      $('tree-all').hidden = true;
+      this.showFocus('all');
+      this.onFocus('all');
     } finally {
       this.inflight = false;
       this.redraw();

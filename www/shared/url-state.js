@@ -70,6 +70,12 @@ export function viewSpecs(races) {
       parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
       text: String,
     },
+    tree: {
+      def: '',
+      help: 'the tree view\'s focus: best (the best line) or a node id, or empty for the whole tree',
+      parse: (s) => (s === '' || s === 'best' || /^\d{1,9}$/.test(s) ? s : undefined),
+      text: String,
+    },
     lesson: {
       def: '',
       help: `one of ${LESSONS.map((l) => l.id).join(', ')}, or empty`,
