@@ -203,6 +203,8 @@ export class TreePanel {
       }
       $('tree-panel').hidden = false;
       this.view.setTree(answer.tree);
+      // The tables' star (depth 1) needs a short canvas, a tree a tall one.
+      $('tree-canvas').classList.toggle('shallow', this.view.layout.maxDepth <= 1);
       setText('tree-lo', fmtNum(this.view.range[0], 3));
       setText('tree-hi', fmtNum(this.view.range[1], 3));
       setText('tree-count', `${fmtInt(answer.tree.id.length)} of ${fmtInt(answer.tree.total_nodes)} nodes shown`);

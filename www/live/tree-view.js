@@ -17,6 +17,8 @@ const MIN_SPAN_PX = 1.5;
 const MAX_EDGE_PX = 10;
 /** Nodes this wide (CSS px) or wider get N and Q/N labels. */
 const LABEL_PX = 46;
+/** The tallest row (CSS px). */
+const MAX_ROW_PX = 110;
 /** How long the back-up pulse takes to climb the path (ms). */
 const PULSE_MS = 900;
 const WIDTH_BUCKETS = 8;
@@ -95,7 +97,9 @@ export class TreeView {
     const { width: W, height: H } = this.canvas;
     const pad = 14 * this.dpr;
     const rows = Math.max(1, this.layout.maxDepth);
-    const rowH = Math.max(6 * this.dpr, (H - 2 * pad) / rows);
+    // Room under the deepest row for its labels; rows no taller than MAX_ROW_PX (a shallow tree stays compact).
+    const below = 26 * this.dpr;
+    const rowH = Math.max(6 * this.dpr, Math.min(MAX_ROW_PX * this.dpr, (H - 2 * pad - below) / rows));
     return { W, H, pad, rowH, y: (d) => pad + d * rowH, x: (u) => pad + u * (W - 2 * pad) };
   }
 
@@ -196,7 +200,10 @@ export class TreeView {
     ctx.lineJoin = 'round';
     for (const i of labels) {
       const q = cols.value[i];
-      const [x, y] = [pos[2 * i], pos[2 * i + 1] + r + 2 * dpr];
+      // The root's label goes beside it, clear of its edges; the others under their node.
+      const root = i === 0;
+      ctx.textAlign = root ? 'left' : 'center';
+      const [x, y] = root ? [pos[0] + r + 5 * dpr, pos[1] - 10 * dpr] : [pos[2 * i], pos[2 * i + 1] + r + 2 * dpr];
       const lines = [[`N ${cols.visits[i]}`, INK.text], [Number.isFinite(q) ? `Q ${fmtShort(q)}` : 'Q –', INK.muted]];
       lines.forEach(([t, c], k) => {
         ctx.strokeText(t, x, y + 11 * k * dpr);
@@ -253,7 +260,8 @@ export class TreeView {
     if (!(phase.phase === 'rollout' || phase.phase === 'backup') || leaf === undefined || !Number.isFinite(pos[2 * leaf])) return;
     const x = pos[2 * leaf];
     const y = pos[2 * leaf + 1];
-    const len = Math.min(g.H - y - 6 * dpr, (18 + 14 * Math.log10(1 + phase.rollout_steps)) * dpr);
+    // Long enough to clear the leaf's own labels, longer for a longer rollout.
+    const len = Math.min(g.H - y - 6 * dpr, (34 + 12 * Math.log10(1 + phase.rollout_steps)) * dpr);
     ctx.save();
     ctx.setLineDash([5 * dpr, 4 * dpr]);
     ctx.lineWidth = 2.5 * dpr;
@@ -268,7 +276,11 @@ export class TreeView {
     const left = x > g.W / 2;
     ctx.textAlign = left ? 'right' : 'left';
     ctx.textBaseline = 'middle';
-    ctx.fillText(`rollout: ${phase.rollout_steps} steps${phase.detected ? ', found ◇' : ''}`, x + (left ? -5 : 5) * dpr, y + len - 4 * dpr);
+    const label = `rollout: ${phase.rollout_steps} steps${phase.detected ? ', found ◇' : ''}`;
+    ctx.strokeStyle = INK.bg;
+    ctx.lineWidth = 4 * dpr;
+    ctx.strokeText(label, x + (left ? -6 : 6) * dpr, y + len - 4 * dpr);
+    ctx.fillText(label, x + (left ? -6 : 6) * dpr, y + len - 4 * dpr);
   }
 
   /** The back-up: a ring climbing the path from the leaf to the root (still: every node ringed). */
