@@ -45,7 +45,7 @@ export const MARKS = {
   arrows: ['decision arrows', 'how often each neighbour was tried; the chosen one thick and yellow'],
   vision: ['vision disc', 'cells within the detection radius rᵥ'],
   searched: ['searched', 'hatched: cells within rᵥ of the path'],
-  treeLine: ['tree node’s line', 'the moves from the searcher to the tree node in focus (dotted, ending in a ring)'],
+  treeLine: ['tree line', 'the moves from the searcher to a node of the tree: the one in focus, or the loop’s selection (dotted, ending in a ring)'],
   selected: ['selected cell', 'the cell you clicked (its details are under the board)'],
 };
 
