@@ -141,14 +141,17 @@ test('the tree view beside the lattice: linked both ways, cut by visits or to th
   await withApp('?autoplay=0&n=11&sigma=2&loops=40&seed=3&start=2,2&variant=tree', async (page) => {
     for (let i = 0; i < 20; i++) await page.click('#step-loop');
     for (let i = 0; i < 3; i++) await page.click('#step-phase');
-    await page.waitForFunction(() => {
+    // The root, 20 loops' nodes and the one just expanded, drawn (read in the same turn).
+    const ready = () => page.waitForFunction(() => {
       const t = window.torusTest.treeView();
-      return t.shown && t.nodes === 22 && t.at; // the root, 20 loops' nodes and the one just expanded
-    }, null, { timeout: 10_000 });
+      return t.shown && t.nodes === 22 && t.at ? t : null;
+    }, null, { timeout: 10_000 }).then((h) => h.jsonValue());
+    await ready();
     // Beside the board at this size: to its right, its top within the board's height.
     const [board, panel] = await page.evaluate(() => ['view-0', 'tree-canvas'].map((id) => document.getElementById(id).getBoundingClientRect().toJSON()));
     assert.ok(panel.left >= board.right && panel.top < board.bottom, JSON.stringify({ board, panel }));
-    const before = await page.evaluate(() => window.torusTest.treeView());
+    await page.waitForTimeout(300); // the rollout's reveal and any fetch under way settle
+    const before = await ready();
     // Hovering a node: its words, with the engine's UCT split for a root child, and its line on the lattice.
     await page.mouse.move(...before.at);
     await page.waitForFunction(() => window.torusTest.drawn().marks.includes('treeLine'), null, { timeout: 5_000 });
