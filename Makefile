@@ -144,6 +144,9 @@ bench: setup
 	node benches/moves.mjs
 	$(call section,teaching: seeking and a 10^5-node tree in wasm (benches/teach-node.mjs))
 	node benches/teach-node.mjs
+	$(call section,the tree view at 10^5 nodes: layout and a frame's drawing in Chromium (benches/tree-view.mjs))
+	@scripts/setup.sh --browser
+	node benches/tree-view.mjs
 	$(call section,instructions per MCTS loop: wasm vs native (benches/instructions.mjs))
 	@command -v valgrind >/dev/null || { apt-get update -qq && apt-get install -y -qq valgrind >/dev/null; }
 	node benches/instructions.mjs

@@ -10,7 +10,7 @@ cargo_bin="${CARGO_HOME:-$HOME/.cargo}/bin"
 start=$SECONDS
 cargo build --lib --release --target wasm32-unknown-unknown
 wasm-bindgen --target web --out-dir www/pkg \
-  target/wasm32-unknown-unknown/release/torus_search.wasm
+  "${CARGO_TARGET_DIR:-target}/wasm32-unknown-unknown/release/torus_search.wasm"
 
 # Vendored browser libraries: copied from node_modules (pinned by package-lock.json),
 # so the page loads them from its own origin and works offline.

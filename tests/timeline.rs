@@ -250,3 +250,75 @@ fn a_bad_point_names_itself_and_the_range_and_changes_nothing() {
     let e = tt.seek(&mut t, TimePoint::at(0, 0)).unwrap_err();
     assert!(e.to_string().contains("ms = 5"), "{e}");
 }
+
+/// What a state holds, whatever point names it (the state after a loop's
+/// back-up is the next loop's start).
+fn state_of(ep: &Episode) -> String {
+    format!(
+        "{:?} {:?} {:?} {:?}",
+        ep.path(),
+        ep.counters(),
+        ep.decision_counters(),
+        ep.decision()
+    )
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn stepping_back_retraces_the_states_stepped_through() {
+    use torus_search::run::race::Race;
+    use torus_search::run::timeline::BackUnit;
+    for variant in ["cells", "tree"] {
+        let cfg = small(variant).with(&[("loops", "3")]);
+        let mut race = Race::new(std::slice::from_ref(&cfg)).unwrap();
+        let mut states = vec![state_of(&race.runs()[0])];
+        let mut loop_starts = vec![0];
+        for _ in 0..30 {
+            let step = race.step_phase()[0];
+            states.push(state_of(&race.runs()[0]));
+            if step.and_then(|s| s.phase()) == Some(PhaseKind::Backup) {
+                loop_starts.push(states.len() - 1);
+            }
+        }
+        assert!(race.runs()[0].steps() >= 2, "{variant}: crosses moves");
+        // Back a phase at a time: every state in reverse, to the start.
+        for want in states.iter().rev().skip(1) {
+            assert!(race.back(BackUnit::Phase).unwrap(), "{variant}");
+            assert_eq!(&state_of(&race.runs()[0]), want, "{variant}: back a phase");
+        }
+        assert!(
+            !race.back(BackUnit::Phase).unwrap(),
+            "{variant}: at the start"
+        );
+        assert_eq!(race.runs()[0].point(), TimePoint::at(0, 0));
+        // Forward again, then back a loop at a time: the loops' starts.
+        for _ in 0..30 {
+            race.step_phase();
+        }
+        assert!(race.back(BackUnit::Loop).unwrap());
+        let last = *loop_starts.last().unwrap();
+        assert_eq!(
+            state_of(&race.runs()[0]),
+            states[last],
+            "{variant}: back to the loop's start"
+        );
+        for &want in loop_starts.iter().rev().skip(1) {
+            assert!(race.back(BackUnit::Loop).unwrap());
+            assert_eq!(
+                state_of(&race.runs()[0]),
+                states[want],
+                "{variant}: back a loop"
+            );
+        }
+        // A move back from mid-decision: its start; then the one before.
+        race.seek(TimePoint {
+            mv: 2,
+            loop_: 1,
+            phase: Some(PhaseKind::Expand),
+        })
+        .unwrap();
+        race.back(BackUnit::Move).unwrap();
+        assert_eq!(race.runs()[0].point(), TimePoint::at(2, 0));
+        race.back(BackUnit::Move).unwrap();
+        assert_eq!(race.runs()[0].point(), TimePoint::at(1, 0));
+    }
+}

@@ -33,15 +33,15 @@ async function boot() {
   const controller = new Controller({ session: new SearchSession(engineModule()) });
   const painter = new Painter(engine);
   const form = new ConfigForm({ schema, onParam: (key, raw) => live.edit(key, raw), onPaintClear: () => clearPainting(painter, live) });
-  const viewState = new ViewState(schema, { redraw: () => controller.dispatch({ type: 'view', view: viewState.frameView() }), traces: () => live.tracesChanged() });
-  const controls = new Controls({ races, onRace: (race) => live.change({ view: { race } }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
+  const viewState = new ViewState(schema, { redraw: () => (controller.dispatch({ type: 'view', view: viewState.frameView() }), views.updateUrl()), traces: () => (live.tracesChanged(), views.updateUrl()) });
+  const controls = new Controls({ races, onRace: (race) => live.change({ view: race }), onSpeed: (speed) => live.change({ view: { speed }, restart: false }), onPlayback: (action) => live.playback(action) });
   const views = new PageViews({ page: start.page, controller, query: { live: () => live.query(), experiments: () => experiments.query() }, autoplay });
   const live = new LiveState({ engine, schema, races, controller, painter, form, controls, viewState, config: start.config, view: start.view, onUrl: () => views.updateUrl() });
   const boards = new Boards(gridInput({ form, painter, live, controller, boards: () => boards, revealed: () => viewState.options().reveal }));
-  bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls });
+  const { tree } = bindDisplay({ engine, schema, races, controller, live, boards, viewState, painter, controls });
   bindReplay({ engine, schema, races, controller, live, boards, link: () => (views.updateUrl(), location.href) });
-  bindPresets({ engine, live, viewState });
-  const batch = new BatchPanel(engine, schema, () => live.config);
+  bindPresets({ engine, schema, live, viewState });
+  const batch = new BatchPanel(engine, schema, () => live.config, () => live.opponent());
   const experiments = new ExperimentsView({
     engine, schema, state: start.experiment, module: engineModule(),
     onUrl: () => views.page === 'experiments' && views.updateUrl(),
@@ -49,7 +49,7 @@ async function boot() {
   });
   $('exp-from-live').addEventListener('click', () => experiments.useLiveConfig(engine.configParams(live.config, false)));
 
-  installTestHook({ controller, engine, batch, experiments, boards, showView: (v) => views.show(v) });
+  installTestHook({ controller, engine, batch, experiments, boards, tree, showView: (v) => views.show(v) });
   controller.dispatch({ type: 'view', view: viewState.frameView() });
   views.show(start.page);
   live.change({ view: start.view, autoplay: autoplay && start.page === 'live', note: start.messages.join('\n') }); // (the Experiments view needs the cores)

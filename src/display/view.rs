@@ -141,6 +141,13 @@ pub struct Decision {
     /// one, several when tied (one of them at random), none before the
     /// decision's first loop.
     pub leading: [bool; 4],
+    /// The moves with the highest UCT value now (what selection would
+    /// try next), none before the decision's first loop.
+    pub highest_uct: [bool; 4],
+    /// The four children's visits added up: under the per-cell tables,
+    /// more than the loops from here, as rollouts passing through a
+    /// neighbour count a visit too.
+    pub children_visits: u64,
 }
 
 /// One heat layer of a frame.
@@ -208,6 +215,8 @@ pub struct Frame<'a> {
     pub status: Status,
     /// Real moves so far.
     pub steps: u32,
+    /// Moves onto a cell the searcher had already stood on.
+    pub revisits: u32,
     /// The searcher's cell.
     pub position: u32,
     /// Loops in the decision under way (or the last one).
@@ -391,14 +400,23 @@ impl FrameBuilder {
             phase_frame(r, &self.phase_path, &self.phase_rollout)
         });
         let rule = final_rule(&ep.config().settings);
-        let decision = ep.decision().map(|view| Decision {
-            view,
-            rule,
-            leading: if view.children.iter().all(|c| c.selected == 0) {
-                [false; 4]
-            } else {
-                leading(&view, rule)
-            },
+        let decision = ep.decision().map(|view| {
+            let started = view.children.iter().any(|c| c.selected > 0);
+            Decision {
+                view,
+                rule,
+                leading: if started {
+                    leading(&view, rule)
+                } else {
+                    [false; 4]
+                },
+                highest_uct: if started {
+                    leading(&view, FinalRule::Uct)
+                } else {
+                    [false; 4]
+                },
+                children_visits: view.children.iter().map(|c| u64::from(c.visits)).sum(),
+            }
         });
         let result = ep.result();
         let counters = ep.counters();
@@ -406,6 +424,7 @@ impl FrameBuilder {
         Frame {
             status: ep.status(),
             steps: ep.steps(),
+            revisits: ep.revisits(),
             position: ep.position(),
             loops_done: ep.loops_done(),
             work: ep.work(),

@@ -200,6 +200,10 @@ pub struct Episode {
     status: Status,
     /// Detection switched off (see [`Episode::blind`]).
     blind: bool,
+    /// A bit per cell: the searcher has stood there.
+    walked: Vec<u64>,
+    /// Moves onto a cell the searcher had already stood on.
+    revisits: u32,
     /// Where the last recorded phase step left the run (`None` after any
     /// other step).
     phased: Option<TimePoint>,
@@ -261,6 +265,8 @@ impl Episode {
             path: vec![start],
             status: Status::Running,
             blind: false,
+            walked: vec![0; torus.cells().div_ceil(64)],
+            revisits: 0,
             phased: None,
             decision_rollouts: 0,
             index,
@@ -268,6 +274,7 @@ impl Episode {
             torus,
         };
         ep.belief.search_around(&ep.sensor, start);
+        ep.walk_on(start);
         if ep.sensor.detects(&ep.torus, start, target) {
             ep.status = Status::Found;
         }
@@ -458,6 +465,7 @@ impl Episode {
         self.decision_rollouts = self.counters.rollouts;
         let pos = self.torus.step(self.position(), m);
         self.path.push(pos);
+        self.walk_on(pos);
         self.belief.search_around(&self.sensor, pos);
         self.searcher.observe(&self.torus, m, pos);
         if !self.blind && self.sensor.detects(&self.torus, pos, self.target) {
@@ -465,6 +473,21 @@ impl Episode {
         } else if self.steps() >= self.cfg.step_cap {
             self.status = Status::Capped;
         }
+    }
+
+    /// Marks `cell` walked, counting a revisit if it was.
+    fn walk_on(&mut self, cell: u32) {
+        let (word, bit) = (cell as usize / 64, 1u64 << (cell % 64));
+        if self.walked[word] & bit != 0 {
+            self.revisits += 1;
+        }
+        self.walked[word] |= bit;
+    }
+
+    /// Moves onto a cell the searcher had already stood on (Theorem 2: a
+    /// nearly self-avoiding walk makes few).
+    pub fn revisits(&self) -> u32 {
+        self.revisits
     }
 
     /// The configuration.
@@ -689,6 +712,8 @@ impl Episode {
             path: self.path.clone(),
             status: self.status,
             blind: self.blind,
+            walked: self.walked.clone(),
+            revisits: self.revisits,
             phased: self.phased,
             decision_rollouts: self.decision_rollouts,
             index: self.index,
@@ -742,6 +767,7 @@ impl Episode {
             + self.searcher.heap_bytes()
             + self.traces.heap_bytes()
             + std::mem::size_of_val(&self.path[..])
+            + std::mem::size_of_val(&self.walked[..])
     }
 
     /// The result so far.

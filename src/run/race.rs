@@ -6,7 +6,7 @@
 use crate::config::Config;
 use crate::param::ParamError;
 use crate::run::episode::{Episode, Status, TimePoint};
-use crate::run::timeline::{SeekError, Timeline, TimelineMemory, DEFAULT_CAP_BYTES};
+use crate::run::timeline::{BackUnit, SeekError, Timeline, TimelineMemory, DEFAULT_CAP_BYTES};
 use crate::searchers::phase::PhaseStep;
 
 /// Episodes stepped together. A searcher that does not deliberate, racing
@@ -177,6 +177,18 @@ impl Race {
             self.runs[i] = ep;
         }
         Ok(())
+    }
+
+    /// Moves every run one `unit` back from where the first run stands
+    /// (see [`Timeline::back`]); false at the start, where nothing moves.
+    ///
+    /// # Errors
+    /// As [`Race::seek`]; nothing changes then.
+    pub fn back(&mut self, unit: BackUnit) -> Result<bool, SeekError> {
+        match self.timelines[0].back(&self.runs[0], unit)? {
+            Some(to) => self.seek(to).map(|()| true),
+            None => Ok(false),
+        }
     }
 
     /// Finishes the decision under way and makes one real move, on every

@@ -17,9 +17,22 @@
 //! decision: slices of a plan being made (the belief MCTS's, a planner's)
 //! are not points, and seeking there shows the decision before its plan.
 
+use crate::game::named::named_enum;
 use crate::param::ParamError;
 use crate::run::episode::{Episode, Status, TimePoint};
 use crate::searchers::phase::{PhaseKind, PhaseStep};
+
+named_enum! {
+    /// How far a step back goes.
+    pub enum BackUnit {
+        /// To the state before the last phase done.
+        Phase = "phase",
+        /// To the start of the loop in flight, or of the loop before.
+        Loop = "loop",
+        /// To the start of the decision under way, or of the one before.
+        Move = "move",
+    }
+}
 
 /// The default memory cap of one run's snapshots.
 pub const DEFAULT_CAP_BYTES: usize = 64 << 20;
@@ -271,6 +284,52 @@ impl Timeline {
                 self.replay(ep, TimePoint::at(to.mv, 0))
             }
             other => other,
+        }
+    }
+}
+
+impl Timeline {
+    /// The point one `unit` before where `ep` stands (`None` at the start
+    /// of the run). Crossing back into the previous decision lands on its
+    /// last loop, replaying it to learn how many loops it ran.
+    ///
+    /// # Errors
+    /// [`SeekError::Timed`] for a timed run.
+    pub fn back(&self, ep: &Episode, unit: BackUnit) -> Result<Option<TimePoint>, SeekError> {
+        let p = ep.point();
+        let (m, l) = (p.mv, p.loop_);
+        let unit = if ep.searcher_info().deliberates {
+            unit
+        } else {
+            BackUnit::Move
+        };
+        let at = |mv, loop_, phase| Ok(Some(TimePoint { mv, loop_, phase }));
+        match (unit, p.phase) {
+            (BackUnit::Phase, Some(PhaseKind::Select)) => at(m, l, None),
+            (BackUnit::Phase, Some(k)) => {
+                let before = PhaseKind::ALL.iter().position(|&x| x == k).unwrap_or(1) - 1;
+                at(m, l, Some(PhaseKind::ALL[before]))
+            }
+            (BackUnit::Phase, None) if l > 0 => at(m, l - 1, Some(PhaseKind::Rollout)),
+            (BackUnit::Loop, Some(_)) => at(m, l, None),
+            (BackUnit::Loop, None) if l > 0 => at(m, l - 1, None),
+            (BackUnit::Move, _) if p != TimePoint::at(m, 0) => at(m, 0, None),
+            (_, _) if m == 0 => Ok(None),
+            (BackUnit::Move, _) => at(m - 1, 0, None),
+            (_, _) => match self.loops_of(ep, m - 1)? {
+                0 => at(m - 1, 0, None),
+                loops if unit == BackUnit::Phase => at(m - 1, loops - 1, Some(PhaseKind::Rollout)),
+                loops => at(m - 1, loops - 1, None),
+            },
+        }
+    }
+
+    /// The loops decision `mv` ran (it must have ended).
+    fn loops_of(&self, ep: &Episode, mv: u32) -> Result<u32, SeekError> {
+        match self.replay(ep, TimePoint::at(mv, u32::MAX)) {
+            Err(SeekError::PastDecision { loops, .. }) => Ok(loops),
+            Err(SeekError::Timed { ms }) => Err(SeekError::Timed { ms }),
+            _ => Ok(0),
         }
     }
 }

@@ -6,7 +6,7 @@ use super::{config_from_js, err, from_js, to_js, RaceHandle};
 use crate::analysis::paired_runs::summarize;
 use crate::run::episode::{TimePoint, TrialResult, TRIAL_FIELDS};
 use crate::run::paired::{differences, paired_trial};
-use crate::run::timeline::{point_from_json, TimelineMemory};
+use crate::run::timeline::{point_from_json, BackUnit, TimelineMemory};
 use crate::searchers::phase::{PhaseKind, PhaseStep};
 use crate::searchers::tree_export::{TreeExport, TreeQuery};
 use wasm_bindgen::prelude::*;
@@ -131,6 +131,24 @@ impl RaceHandle {
             .map_err(|e| JsError::new(&format!("seek point: {e}")))?;
         let to = point_from_json(&v).map_err(err)?;
         self.race.seek(to).map_err(err)?;
+        self.timeline()
+    }
+
+    /// Moves every run one `unit` back ("phase", "loop" or "move") from
+    /// where the first run stands: a phase, to the start of the loop (or
+    /// the loop before), to the start of the decision (or the one before);
+    /// at the run's start nothing moves. Returns `timeline()`.
+    ///
+    /// # Errors
+    /// A bad unit names the allowed ones; a timed run cannot go back.
+    pub fn back(&mut self, unit: &str) -> Result<JsValue, JsError> {
+        let u = BackUnit::parse(unit).ok_or_else(|| {
+            JsError::new(&format!(
+                "back: unit must be phase, loop or move, got {:?}",
+                unit.chars().take(40).collect::<String>()
+            ))
+        })?;
+        self.race.back(u).map_err(err)?;
         self.timeline()
     }
 

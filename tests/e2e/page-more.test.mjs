@@ -208,6 +208,9 @@ test('teaching view, picking the start on the grid, painting a prior', { timeout
     await page.waitForFunction(() => Number(document.getElementById('steps').textContent) >= 2, null, { timeout: 60_000 });
     await page.click('#play');
     for (let i = 0; i < 3; i++) await page.click('#step-loop');
+    // Mid-loop: the phase strip, the narration and the tree show the rollout just run.
+    for (let i = 0; i < 3; i++) await page.click('#step-phase');
+    await page.waitForFunction(() => window.torusTest.phase() === 'rollout' && window.torusTest.treeView().shown, null, { timeout: 10_000 });
     await page.waitForTimeout(100);
     await viewShot(page, 'teaching-view');
     // Setting the start is an explicit mode: its "Pick on grid" toggle, then

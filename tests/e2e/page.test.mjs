@@ -182,7 +182,7 @@ test('every control changes the run', { timeout: 300_000 }, async () => {
     const fp = await fingerprint();
     assert.doesNotMatch(fp.search, /seed=5(&|$)/);
     // Speed changes the controller's work per frame and the URL.
-    await page.locator('#speed').fill('13');
+    await page.locator('#speed').fill('16');
     await page.locator('#speed').dispatchEvent('input');
     assert.equal(await page.evaluate(() => window.torusTest.speed()), 'max');
     assert.match(await page.evaluate(() => location.search), /speed=max/);

@@ -64,12 +64,16 @@ for (const device of Object.keys(VIEWPORTS)) {
 test('the keys are shown on the page, and the speed slider says its value in words', { timeout: 60_000 }, async () => {
   await withDevice('1366x768', '?seed=3&autoplay=0', async (page) => {
     const keys = await page.locator('.keys').innerText();
-    for (const k of ['space', 'restart', 'new target', 'Shift']) assert.ok(keys.includes(k), `keys name ${k}: ${keys}`);
+    for (const k of ['space', 'restart', 'new target', 'Shift', 'one phase', 'back a move', 'Home']) assert.ok(keys.includes(k), `keys name ${k}: ${keys}`);
     assert.ok(await page.locator('.keys').isVisible());
     assert.equal(await page.getAttribute('#speed', 'aria-valuetext'), '10 loops/frame');
-    await page.locator('#speed').fill('0');
+    await page.locator('#speed').fill('3');
     await page.locator('#speed').dispatchEvent('input');
     assert.equal(await page.getAttribute('#speed', 'aria-valuetext'), '1 loop/frame');
+    // Slower still: a phase at a time.
+    await page.locator('#speed').fill('0');
+    await page.locator('#speed').dispatchEvent('input');
+    assert.equal(await page.getAttribute('#speed', 'aria-valuetext'), 'one phase every 2 s');
   });
 });
 

@@ -2,7 +2,8 @@
 // viewport (what a visitor sees without scrolling) at two laptops, a wide
 // screen and two phones, into target/e2e/<prefix>-<size>.png.
 // Not a test: `node tests/e2e/www-shots.mjs [--prefix www] [--query '?seed=3']
-//   [--sizes 1366x768,phone] [--vision deuteranopia] [--found] [--first-visit] [--moves 12]`.
+//   [--sizes 1366x768,phone] [--vision deuteranopia] [--found] [--first-visit] [--moves 12]
+//   [--loops 20 --phases 3]`: then that many loops and phases stepped (the teaching view mid-loop).
 // --vision emulates a colour vision deficiency (Chromium's CDP emulation:
 // deuteranopia, protanopia, tritanopia, achromatopsia, blurredVision);
 // --found runs the episode to its end; --first-visit shows the tour.
@@ -50,6 +51,9 @@ async function shoot(server, name, device, opts) {
         for (let i = 0; i < opts.moves; i++) await page.evaluate(() => window.torusTest.dispatch({ type: 'stepMove' }));
       }
       await page.evaluate(() => window.torusTest.dispatch({ type: 'pause' }));
+      for (let i = 0; i < opts.loops; i++) await page.evaluate(() => window.torusTest.dispatch({ type: 'stepLoop' }));
+      for (let i = 0; i < opts.phases; i++) await page.evaluate(() => window.torusTest.dispatch({ type: 'stepPhase' }));
+      if (opts.hoverTree) await page.hover('#tree-canvas', { position: { x: 30, y: 40 } }).catch(() => {});
       await page.waitForTimeout(400);
     } else {
       await page.waitForSelector('#tour:not([hidden])', { timeout: 30_000 });
@@ -78,6 +82,9 @@ if (process.argv[1] && path.resolve(process.argv[1]) === path.resolve(new URL(im
     query: arg('query', '?seed=3'),
     vision: arg('vision', ''),
     moves: Number(arg('moves', '12')),
+    loops: Number(arg('loops', '0')),
+    phases: Number(arg('phases', '0')),
+    hoverTree: flag('hover-tree'),
     found: flag('found'),
     firstVisit: flag('first-visit'),
   };

@@ -9,6 +9,10 @@ import { $, setText } from '../shared/ui.js';
 import { Renderer, drawNotice } from './renderer.js';
 import { Glide, Pulse, pointAt } from './motion.js';
 import { TraceKeeper } from './trails.js';
+import { cellsOf } from './panels/narrate.js';
+
+/** A loop stepped phase by phase reveals its rollout one of the engine's chunks per this many ms. */
+const REVEAL_MS = 30;
 
 /** A pointer that moves further than this (CSS px) between down and up is a swipe, not a tap. */
 const TAP_SLOP = 10;
@@ -26,6 +30,8 @@ export class Boards {
     this.renderers = [0, 1].map((i) => new Renderer($(`view-${i}`)));
     this.motion = [0, 1].map(() => ({ glide: new Glide(), trails: new TraceKeeper(), pulse: new Pulse() }));
     this.selected = -1;
+    this.treeLine = null; // cells of the tree node in focus (tree-panel.js), drawn on board 0
+    this.onHoverCell = null; // (cell | −1) => void: the pointer over board 0's cells
     const ro = new ResizeObserver(() => {
       this.fit();
       onResize();
@@ -55,7 +61,15 @@ export class Boards {
         onStroke(idx, true);
       } else down = { x: e.clientX, y: e.clientY, idx };
     });
+    let hovered = -1;
+    const hover = (idx) => {
+      if (i !== 0 || idx === hovered) return;
+      hovered = idx;
+      this.onHoverCell?.(idx);
+    };
+    canvas.addEventListener('pointerleave', () => hover(-1));
     canvas.addEventListener('pointermove', (e) => {
+      if (!stroke) hover(renderer.cellAt(e.clientX, e.clientY));
       if (!stroke) return;
       const idx = renderer.cellAt(e.clientX, e.clientY);
       if (idx < 0 || idx === last) return;
@@ -79,15 +93,15 @@ export class Boards {
     for (const r of this.renderers) r.canvas.dataset.pointer = mode;
   }
 
-  /** Shows one board, or two side by side with titles and the scoreboard. */
-  setup(runs) {
+  /** Shows one board, or two side by side with `titles` and the scoreboard. */
+  setup(runs, titles = runs.map((r) => r.label)) {
     const race = runs.length > 1;
     $('boards').classList.toggle('race', race);
     $('board-1').hidden = !race;
     $('scoreboard').hidden = !race;
     this.selected = -1;
     runs.forEach((r, i) => {
-      setText($(`board-${i}`).querySelector('.board-title'), race ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : '');
+      setText($(`board-${i}`).querySelector('.board-title'), race ? titles[i] : '');
       this.motion[i].trails.reset();
     });
     requestAnimationFrame(() => this.fit());
@@ -112,7 +126,7 @@ export class Boards {
       }
       pending = this.renderers[i].draw(scene) || pending;
       const m = this.motion[i];
-      animating = animating || m.glide.moving() || m.pulse.playing(now) || (live && m.trails.busy());
+      animating = animating || m.glide.moving() || m.pulse.playing(now) || (live && m.trails.busy()) || scene.revealing;
     });
     return { pending, animating };
   }
@@ -128,7 +142,10 @@ export class Boards {
     const path = run.pathView();
     const shown = m.glide.at(run, run.pathLen - 1, now, still);
     m.trails.update(opts.rollouts ? run.traces : [], run.practice, now, { live: live && running, still });
+    // A loop stepped phase by phase: its own selection and rollout instead of the kept trails.
+    const loop = running ? this.loopScene(run, m, now, still) : null;
     return {
+      revealing: !!loop?.animating,
       n: run.n,
       layers: drawn.filter((l) => l !== mask).map((l) => ({ ...l, flat: l.max > 0 && l.min_nonzero === l.max })),
       searched: mask ?? null,
@@ -143,14 +160,52 @@ export class Boards {
       showTarget: found || opts.reveal,
       pulses: m.pulse.rings(run, found, now, still),
       rv: run.config.rv,
-      trails: running ? m.trails.visible({ live, still }) : [],
-      practice: opts.practice && running ? m.trails.practice() : -1,
+      trails: loop ? (opts.rollouts ? loop.trails : []) : running ? m.trails.visible({ live, still }) : [],
+      practice: opts.practice && running ? (loop ? loop.practice : m.trails.practice()) : -1,
       intent: opts.intent && running ? run.intent : null,
       decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
       selected: i === 0 ? this.selected : -1,
+      treeLine: running ? (i === 0 && this.treeLine) || loop?.line || null : null,
       grid: opts.grid,
       tiling: opts.tiling,
     };
+  }
+
+  /**
+   * The loop in flight of a run stepped phase by phase (its frame's phase
+   * record): the tree path it selected (from the searcher), its practice
+   * target, and its rollout revealed chunk by chunk as the engine cut it
+   * (at once under reduced motion, whole once backed up). Null otherwise.
+   */
+  loopScene(run, m, now, still) {
+    const rec = run.frame.phase;
+    if (!rec?.phase) {
+      m.reveal = null;
+      return null;
+    }
+    const path = cellsOf(rec.path);
+    const out = { trails: [], practice: rec.practice, line: path.length > 1 ? path : null, animating: false };
+    if (rec.phase !== 'rollout' && rec.phase !== 'backup') return out;
+    const key = `${rec.practice}|${rec.rollout_steps}|${path.join(',')}`;
+    if (m.reveal?.key !== key) {
+      const roll = cellsOf(rec.rollout);
+      const cells = new Uint32Array(roll.length + 1);
+      cells[0] = path[path.length - 1];
+      cells.set(roll, 1);
+      m.reveal = { key, start: now, cells, end: -1, shown: null };
+    }
+    const r = m.reveal;
+    const all = rec.chunks.length;
+    const k = rec.phase === 'backup' || still ? all : Math.min(all, Math.floor((now - r.start) / REVEAL_MS) + 1);
+    const end = k ? rec.chunks[k - 1] : 0;
+    // The same array while it does not grow: the trail's rendering is kept by it.
+    if (end !== r.end) {
+      r.end = end;
+      r.shown = r.cells.subarray(0, end + 1);
+    }
+    out.trails = [{ cells: r.shown, alpha: 1 }];
+    out.animating = k < all;
+    return out;
   }
 
   /** Dims every board with a notice. */

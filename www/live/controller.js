@@ -13,6 +13,12 @@
 //                                have a frame (paused: they wait in `paused` rather than `idle`)
 //   play | pause | toggle        playback
 //   stepLoop | stepMove          one MCTS loop / one real move on each unfinished run (pauses first)
+//   stepPhase                    one phase of the loop in flight (select, expand, roll out, back up)
+//   seek { point }               every run to a timeline point { move, loop, phase } it has reached
+//   advanceTo { point }          steps forward to a point not reached yet, then seeks it (a link's `at`)
+//   back { unit }                one phase | loop | move back (seek and back pause first, and bring
+//                                a found or capped run back to paused; a bad point leaves the runs
+//                                as they were and resolves to { ok: false, error })
 //   speed { speed }              loops per frame, or 'max'
 //   view { view }                what frames carry: { layers: [layer requests], traces: bool }
 //   redraw                       draw again with a fresh frame (view options changed)
@@ -20,15 +26,19 @@
 //                                (motion on the board: a glide, a fade, a pulse)
 //   export                       resolves to each run's export (config, path, result)
 //   request { request, payload } a raw worker request (benchmarks, tests)
+//   ask { request, payload }     a raw worker request whose failure is the caller's (rejects; the
+//                                page stays as it was): the tree view's queries
 // Events (on(name, fn)):
-//   state (state, prev) · runs (runViews) · frame ({ state, meter, runs }) · error (err)
+//   state (state, prev) · runs (runViews) · frame ({ state, meter, runs, timeline }) · error (err)
+//   · message (text): a command refused (a seek past the end), the runs unchanged
+// `timeline` is the engine's: { move, loop, phase, end: { move, loop, phase } } of the first run.
 
 const TRANSITIONS = {
   idle: ['running', 'paused', 'found', 'capped', 'error', 'idle'],
   running: ['paused', 'found', 'capped', 'error', 'idle'],
   paused: ['running', 'paused', 'found', 'capped', 'error', 'idle'],
-  found: ['idle', 'error'],
-  capped: ['idle', 'error'],
+  found: ['idle', 'paused', 'error'],
+  capped: ['idle', 'paused', 'error'],
   error: ['idle', 'error'],
 };
 
@@ -41,7 +51,8 @@ export class Controller {
   constructor({ session, raf = null }) {
     this.session = session;
     this.raf = raf ?? (typeof requestAnimationFrame !== 'undefined' ? (fn) => requestAnimationFrame(fn) : null);
-    this.listeners = { state: [], runs: [], frame: [], error: [] };
+    this.listeners = { state: [], runs: [], frame: [], error: [], message: [] };
+    this.timeline = null;
     this.runs = [];
     this.view = { layers: [], traces: false };
     this.state = 'idle';
@@ -84,7 +95,14 @@ export class Controller {
         return this.toggle();
       case 'stepLoop':
       case 'stepMove':
+      case 'stepPhase':
         return this.step(cmd.type);
+      case 'seek':
+        return this.travel('seek', { point: cmd.point });
+      case 'back':
+        return this.travel('back', { unit: cmd.unit });
+      case 'advanceTo':
+        return this.travel('advanceTo', { point: cmd.point });
       case 'speed':
         this.speed = cmd.speed;
         this.send('speed', { speed: cmd.speed });
@@ -101,6 +119,8 @@ export class Controller {
         return this.send('export').then((a) => a?.runs ?? null);
       case 'request':
         return this.send(cmd.request, cmd.payload ?? {});
+      case 'ask':
+        return this.session.request(cmd.request, cmd.payload ?? {});
       default:
         throw new Error(`unknown command ${JSON.stringify(cmd.type)}`);
     }
@@ -167,6 +187,7 @@ export class Controller {
     }
     if (ticket !== this.resets) return false;
     this.runs = runs;
+    this.timeline = null;
     this.meter.frames = [];
     this.meter.loops = [];
     this.meter.steps = [];
@@ -223,6 +244,32 @@ export class Controller {
     }
   }
 
+  /**
+   * A seek or a step back: pauses, and moves the runs on their timeline.
+   * Resolves to { ok: true } once the page holds the frame there, or to
+   * { ok: false, error } when the engine refused (the runs as they were).
+   */
+  async travel(type, payload) {
+    const runs = this.runs;
+    if (!runs.length || !['idle', 'running', 'paused', 'found', 'capped'].includes(this.state)) return { ok: false, error: `${type}: no runs to move` };
+    this.pause();
+    let answer;
+    try {
+      answer = await this.session.request(type, { ...payload, requests: this.requests(runs) });
+    } catch (err) {
+      if (err.trap) {
+        this.fail(err);
+        return { ok: false, error: err.message };
+      }
+      this.emit('message', err.message);
+      return { ok: false, error: err.message };
+    }
+    if (!this.take(answer, runs)) return { ok: false, error: `${type}: the runs were replaced meanwhile` };
+    // Back before the end of a finished run: it can be played on again.
+    if ((this.state === 'found' || this.state === 'capped') && runs.some((r) => r.status() === 'running')) this.setState('paused');
+    return { ok: true };
+  }
+
   requests(runs) {
     return runs.map((r) => r.request(this.view));
   }
@@ -231,6 +278,7 @@ export class Controller {
   take(answer, runs) {
     if (!answer || runs !== this.runs || !this.session.current(answer)) return false;
     answer.frames.forEach((f, i) => runs[i].apply(f));
+    if (answer.timeline) this.timeline = answer.timeline;
     this.settle();
     this.dirty = true;
     this.schedule();
@@ -284,7 +332,7 @@ export class Controller {
       this.dirty = false;
       this.measure(ts);
       try {
-        this.emit('frame', { state: this.state, meter: this.meter, runs: this.runs });
+        this.emit('frame', { state: this.state, meter: this.meter, runs: this.runs, timeline: this.timeline });
       } catch (err) {
         this.fail(err);
       }

@@ -3,30 +3,47 @@
 // (live/config-form.js).
 
 import { $, fillSelect } from '../shared/ui.js';
+import { PHASE_SPEEDS } from '../shared/url-state.js';
 
 /** The keys (shown on the page, beside the playback buttons). */
-const KEYS = { ' ': 'toggle', ArrowRight: 'stepMove', ArrowUp: 'stepLoop', r: 'restart', R: 'restart', n: 'newSeed', N: 'newSeed' };
+const KEYS = {
+  ' ': 'toggle', ArrowRight: 'stepMove', ArrowUp: 'stepLoop', p: 'stepPhase', P: 'stepPhase', r: 'restart', R: 'restart', n: 'newSeed', N: 'newSeed',
+  ArrowLeft: 'backMove', Home: 'start', End: 'end',
+};
+/** With Ctrl (or ⌘): loops; with Shift: phases. */
+const CTRL_KEYS = { ArrowRight: 'stepLoop', ArrowLeft: 'backLoop' };
+const SHIFT_KEYS = { ArrowRight: 'stepPhase', ArrowLeft: 'backPhase' };
 
-/** Speeds on the slider, in loops per frame. */
-const SPEEDS = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
+/** Speeds on the slider: one phase every 2, 1 or 0.5 s, then loops per frame. */
+export const SPEEDS = [...PHASE_SPEEDS, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 20000, 'max'];
+
+/** The action of a key press, or undefined. */
+function keyAction(e) {
+  if (e.altKey) return undefined;
+  if (e.ctrlKey || e.metaKey) return CTRL_KEYS[e.key];
+  if (e.shiftKey && SHIFT_KEYS[e.key]) return SHIFT_KEYS[e.key];
+  return KEYS[e.key];
+}
 
 export class Controls {
   /**
    * @param {object} o
    * @param {object[]} o.races                  race options (url-state.js raceOptions)
-   * @param {(race) => void} o.onRace           the race opponent changed
+   * @param {(view) => void} o.onRace           the race opponent changed: { race } or { vs }
    * @param {(speed) => void} o.onSpeed         loops per frame, or 'max'
-   * @param {(action) => void} o.onPlayback     toggle | stepMove | stepLoop | restart | newSeed
+   * @param {(action) => void} o.onPlayback     toggle | stepMove | stepLoop | stepPhase | restart | newSeed
+   *                                            | backMove | backLoop | backPhase | start | end
    */
   constructor({ races, onRace, onSpeed, onPlayback }) {
     fillSelect($('race'), races.map((r) => [r.id, r.label]));
-    $('race').addEventListener('change', (e) => onRace(e.target.value));
+    $('race').addEventListener('change', (e) => onRace({ race: e.target.value }));
+    $('vs').addEventListener('change', (e) => onRace({ vs: e.target.value.trim().replace(/\s+/g, ' ') }));
     $('speed').addEventListener('input', (e) => {
       const s = SPEEDS[Number(e.target.value)];
       showSpeed(s);
       onSpeed(s);
     });
-    for (const [id, action] of [['play', 'toggle'], ['step-move', 'stepMove'], ['step-loop', 'stepLoop'], ['reset', 'restart'], ['new-seed', 'newSeed']]) {
+    for (const [id, action] of [['play', 'toggle'], ['step-move', 'stepMove'], ['step-loop', 'stepLoop'], ['step-phase', 'stepPhase'], ['reset', 'restart'], ['new-seed', 'newSeed']]) {
       $(id).addEventListener('click', () => onPlayback(action));
     }
     // Space on a focused button would also "click" it; keep one toggle.
@@ -35,9 +52,8 @@ export class Controls {
     });
     document.addEventListener('keydown', (e) => {
       const t = e.target;
-      if (e.ctrlKey || e.metaKey || e.altKey) return;
       if (t instanceof HTMLElement && t.closest('input, select, textarea, [contenteditable]')) return;
-      const action = KEYS[e.key];
+      const action = keyAction(e);
       if (!action) return;
       e.preventDefault();
       onPlayback(action);
@@ -47,6 +63,7 @@ export class Controls {
   /** Shows the view parameters: the race opponent and the speed. */
   sync(view) {
     $('race').value = view.race;
+    $('vs').value = view.vs ?? '';
     $('speed').value = speedIndex(view.speed);
     showSpeed(view.speed);
   }
@@ -54,6 +71,7 @@ export class Controls {
   /** Enables the loop button for runs that deliberate (or make a plan in slices: a slice a press). */
   setDeliberates(yes) {
     $('step-loop').disabled = !yes;
+    $('step-phase').disabled = !yes;
   }
 }
 
@@ -64,14 +82,16 @@ function showSpeed(speed) {
 }
 
 function speedIndex(speed) {
-  if (speed === 'max') return SPEEDS.length - 1;
-  let best = 0;
+  if (typeof speed === 'string') return Math.max(0, SPEEDS.indexOf(speed));
+  let best = SPEEDS.indexOf(1);
   SPEEDS.forEach((s, i) => {
-    if (s !== 'max' && Math.abs(Math.log(s) - Math.log(speed)) < Math.abs(Math.log(SPEEDS[best]) - Math.log(speed))) best = i;
+    if (typeof s === 'number' && Math.abs(Math.log(s) - Math.log(speed)) < Math.abs(Math.log(SPEEDS[best]) - Math.log(speed))) best = i;
   });
   return best;
 }
 
 function speedLabel(speed) {
-  return speed === 'max' ? 'as fast as possible' : `${speed} loop${speed === 1 ? '' : 's'}/frame`;
+  if (speed === 'max') return 'as fast as possible';
+  if (typeof speed === 'string') return `one phase every ${speed.slice(0, -1)} s`;
+  return `${speed} loop${speed === 1 ? '' : 's'}/frame`;
 }

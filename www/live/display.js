@@ -17,11 +17,36 @@ import { StepsChart } from './steps-chart.js';
 import { reducedMotion } from './motion.js';
 import { bindFound } from './panels/found.js';
 import { Tour } from './tour.js';
+import { updateNarration } from './panels/narrate.js';
+import { TimelineBar } from './timeline-bar.js';
+import { TreePanel } from './tree-panel.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
 /** Least time between updates of the board's text description while running (ms). */
 const DESCRIBE_MS = 1000;
+
+/**
+ * Each board's title: its label alone, or in a race "A: …" and "B: …"
+ * naming what differs between the two (the engine's configDifferences),
+ * with the searcher's label when the searchers differ.
+ */
+export function raceTitles(engine, runs) {
+  if (runs.length < 2) return runs.map((r) => r.label);
+  const diffs = engine.configDifferences(runs[0].config, runs[1].config).filter((d) => d.key !== 'keep_traces');
+  // The searcher's label already names these.
+  const named = new Set(['searcher', 'variant', 'rollout', 'loops']);
+  const searcherDiffers = diffs.some((d) => d.key === 'searcher' || d.key === 'variant');
+  return runs.map((r, i) => {
+    const side = i === 0 ? 'a' : 'b';
+    const what = diffs.filter((d) => !searcherDiffers || !named.has(d.key)).map((d) => `${d.key}=${shortValue(d[side])}`).join(' ');
+    const text = searcherDiffers ? [r.label, what].filter(Boolean).join(' · ') : what ? `${what} — ${r.label}` : r.label;
+    return `${i === 0 ? 'A' : 'B'}: ${text}`;
+  });
+}
+
+/** A value as text, long decimals cut to 4 significant digits. */
+const shortValue = (v) => (/^-?\d+\.\d{5,}$/.test(v) ? String(Number(Number(v).toPrecision(4))) : v);
 
 /**
  * @param {object} o
@@ -34,6 +59,12 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   bindFound({ controller, live, races });
   const legend = new Legend(schema, (p) => engine.paletteLut(p), $('legend'));
   const chart = new StepsChart($('chart'));
+  const timelineBar = new TimelineBar((action, arg) => live.playback(action, arg));
+  const tree = new TreePanel({
+    controller, boards, lut: engine.paletteLut('viridis'), focus: live.view.tree,
+    onFocus: (f) => live.change({ view: { tree: f === 'all' ? '' : String(f) }, restart: false }),
+  });
+  controller.on('message', (text) => showMessage(text));
   const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis
   let lastTs = 0;
@@ -41,8 +72,10 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   let describedTs = -Infinity;
   controller.on('runs', (runs) => {
     runTime = 0;
-    chart.reset(runs.map((r, i) => (runs.length > 1 ? `${i === 0 ? 'A' : 'B'}: ${r.label}` : r.label)));
-    boards.setup(runs);
+    const titles = raceTitles(engine, runs);
+    chart.reset(titles);
+    tree.reset();
+    boards.setup(runs, titles);
     legend.reset();
     drawn.clear();
     describedTs = -Infinity;
@@ -62,7 +95,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     setText('play', 'Restart');
     boards.notice('Stopped: see the message. Restart to try again.');
   });
-  controller.on('frame', ({ state, meter, runs }) => {
+  controller.on('frame', ({ state, meter, runs, timeline }) => {
     const ts = performance.now();
     if (state === 'running' && lastTs) runTime += Math.min(0.25, (ts - lastTs) / 1000);
     lastTs = state === 'running' ? ts : 0;
@@ -70,15 +103,18 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     const opts = viewState.options();
     const requested = viewState.layerRequests();
     const { pending, animating } = boards.draw(runs, requested, opts, { preview: painter.preview, now: ts, live: state === 'running', still: reducedMotion() });
-    if (pending || animating) controller.dispatch({ type: 'animate' });
+    const growing = tree.update(runs[0], { running: state === 'running', now: ts, still: reducedMotion() });
+    if (pending || animating || growing) controller.dispatch({ type: 'animate' });
     for (const m of boards.drawnMarks(0)) drawn.add(m);
     // The board's description for screen readers changes at most once a second.
     if (ts - describedTs >= (state === 'running' ? DESCRIBE_MS : 0)) {
       describedTs = ts;
       setText('board-desc', describeRun(runs[0]));
     }
+    timelineBar.update(timeline, runs[0].deliberates);
     if (state === 'running' && ts - panelsTs < PANEL_MS) return;
     panelsTs = ts;
+    updateNarration(runs[0]);
     setText('view-desc', describeRun(runs[0]));
     updateStats(runs, meter, opts);
     updateDecision(runs[0]);
@@ -93,4 +129,5 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   });
   // After the drawing above: the tour points at where this frame drew the searcher.
   new Tour({ controller, boards });
+  return { tree };
 }

@@ -4,7 +4,7 @@
 // form, writes the URL and restarts the runs. Every edit, preset, opened
 // experiment point, replay, race and speed goes through it.
 
-import { writeUrl } from '../shared/url-state.js';
+import { writeUrl, opponentConfig, pointToAt, atToPoint } from '../shared/url-state.js';
 import { showMessage } from '../shared/ui.js';
 import { reducedMotion } from './motion.js';
 
@@ -26,6 +26,15 @@ export class LiveState {
     controller.on('error', (err) => {
       this.trapped = err instanceof WebAssembly.RuntimeError;
     });
+    // A run stopped at a point: the URL says where (a link reopens it there, paused).
+    let at = '';
+    controller.on('frame', () => {
+      const now = this.at();
+      if (now !== at) {
+        at = now;
+        this.onUrl();
+      }
+    });
   }
 
   /**
@@ -36,7 +45,15 @@ export class LiveState {
    */
   change({ config = this.config, view = {}, autoplay, note = '', restart = true } = {}) {
     this.config = config;
-    this.view = { ...this.view, ...view };
+    // A link's layers and point are applied once, here; the page then keeps them.
+    const { show, at, ...rest } = view;
+    this.view = { ...this.view, ...rest };
+    if (show) {
+      const unknown = this.viewState.applyShown(show);
+      if (unknown.length) note = [note, `Unknown layers in show=: ${unknown.join(', ').slice(0, 80)} (ignored).`].filter(Boolean).join('\n');
+      this.controller.dispatch({ type: 'view', view: this.viewState.frameView() });
+    }
+    if (at && restart) return this.openAt(atToPoint(at), note);
     if (view.speed !== undefined) this.controller.dispatch({ type: 'speed', speed: this.view.speed });
     const applicable = new Set(this.engine.applicable(config));
     if (this.paintKeys.some((k) => applicable.has(k))) this.painter.load(config);
@@ -47,6 +64,36 @@ export class LiveState {
     const ready = this.restart(autoplay);
     if (note) showMessage(note);
     return ready;
+  }
+
+  /**
+   * Fresh runs, paused at timeline point `point` (a link's `at`): they are
+   * stepped there through the engine's timeline; a point past the run's
+   * end leaves them at its start, with the engine's message.
+   */
+  async openAt(point, note) {
+    this.onUrl();
+    this.last = { autoplay: false, paused: true };
+    if (this.controller.state !== 'idle') this.controller.setState('idle');
+    const ready = await this.restartPaused();
+    if (!ready) return false;
+    // The run is made up to the point first: seek only reaches points reached.
+    const answer = await this.controller.dispatch({ type: 'advanceTo', point });
+    if (note || !answer.ok) showMessage([note, answer.ok ? '' : `Could not open the run at at=${pointToAt(point)}: ${answer.error}`].filter(Boolean).join('\n'));
+    return answer.ok;
+  }
+
+  restartPaused() {
+    for (const fn of this.restarted) fn();
+    showMessage('');
+    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay: false, paused: true });
+  }
+
+  /** Where a stopped run stands, as a link's `at` ('' when running, or at the start). */
+  at() {
+    const s = this.controller.state;
+    if (!['paused', 'found', 'capped'].includes(s)) return '';
+    return pointToAt(this.controller.timeline);
   }
 
   /** Sets one parameter from text through the engine; a bad value keeps the old one, with a message. */
@@ -95,16 +142,32 @@ export class LiveState {
 
   /** The live view's query: only what differs from the defaults (and the seed), or with `full` everything. */
   query({ full = false } = {}) {
-    return writeUrl(this.engine, this.config, this.view, { full, races: this.races });
+    const view = { ...this.view, show: this.viewState.shown(), at: this.at() };
+    return writeUrl(this.engine, this.config, view, { full, races: this.races });
   }
 
-  /** The engine configs of the runs: the config, and the race opponent's, keeping the traces the view draws. */
+  /**
+   * The engine configs of the runs: the config, and the race opponent's
+   * (the race option's searcher, then the `vs` changes: any parameters),
+   * keeping the traces the view draws.
+   */
   runConfigs() {
     this.kept = this.viewState.traceCount(this.config.keep_traces);
     const main = this.engine.setParam(this.config, 'keep_traces', String(this.kept));
+    const opponent = this.opponent(main);
+    return opponent ? [main, opponent] : [main];
+  }
+
+  /** The race opponent of `main` (the config by default), or null when not racing; a bad change shows a message and is left out. */
+  opponent(main = this.config) {
     const race = this.races.find((r) => r.id === this.view.race);
-    if (!race?.pairs.length) return [main];
-    return [main, race.pairs.reduce((c, [key, v]) => this.engine.setParam(c, key, v), main)];
+    if (!race?.pairs.length && !this.view.vs) return null;
+    try {
+      return opponentConfig(this.engine, main, race?.pairs ?? [], this.view.vs);
+    } catch (err) {
+      showMessage(`Race: the opponent's change "${this.view.vs}" is not valid: ${err.message}.`);
+      return race?.pairs.length ? opponentConfig(this.engine, main, race.pairs, '') : null;
+    }
   }
 
   /**
@@ -146,9 +209,14 @@ export class LiveState {
     else this.controller.dispatch({ type: 'redraw' });
   }
 
-  /** A playback button or key. */
-  playback(action) {
-    if (action === 'restart') this.restart();
+  /** A playback button or key, or a move on the timeline (`arg`: { move } for 'seek'). */
+  playback(action, arg) {
+    const back = { backMove: 'move', backLoop: 'loop', backPhase: 'phase' }[action];
+    if (back) this.controller.dispatch({ type: 'back', unit: back });
+    else if (action === 'start') this.controller.dispatch({ type: 'seek', point: { move: 0 } });
+    else if (action === 'end') this.controller.dispatch({ type: 'seek', point: this.controller.timeline?.end ?? { move: 0 } });
+    else if (action === 'seek') this.controller.dispatch({ type: 'seek', point: { move: arg.move } });
+    else if (action === 'restart') this.restart();
     else if (action === 'newSeed') this.edit('seed', String(crypto.getRandomValues(new Uint32Array(1))[0]));
     else if (action === 'toggle' && this.controller.state === 'error') this.restart(true);
     else this.controller.dispatch({ type: action });

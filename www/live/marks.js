@@ -45,6 +45,7 @@ export const MARKS = {
   arrows: ['decision arrows', 'how often each neighbour was tried; the chosen one thick and yellow'],
   vision: ['vision disc', 'cells within the detection radius rᵥ'],
   searched: ['searched', 'hatched: cells within rᵥ of the path'],
+  treeLine: ['tree line', 'the moves from the searcher to a node of the tree: the one in focus, or the loop’s selection (dotted, ending in a ring)'],
   selected: ['selected cell', 'the cell you clicked (its details are under the board)'],
 };
 
@@ -239,6 +240,17 @@ const ICONS = {
   searched: (ctx, w, h) => {
     ctx.fillStyle = ctx.createPattern(hatchTile(6), 'repeat');
     ctx.fillRect(2, 2, w - 4, h - 4);
+  },
+  treeLine: (ctx) => {
+    ctx.beginPath();
+    ctx.moveTo(3, 8);
+    ctx.lineTo(17, 8);
+    ctx.setLineDash([1.5, 3]);
+    rimmed(ctx, INK.white, 2.5, 1, 2.5);
+    ctx.setLineDash([]);
+    ctx.beginPath();
+    ctx.arc(21.5, 8, 4, 0, TAU);
+    rimmed(ctx, INK.white, 1.8, 1, 2.5);
   },
   selected: (ctx) => paintSelected(ctx, 14, 8, 6, 1),
 };

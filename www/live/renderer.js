@@ -177,6 +177,7 @@ export class Renderer {
     this.drawTrails(scene, px);
     const pending = this.drawPath(scene, gridPx, tiles);
     this.drawIntent(scene, eachTile, px);
+    this.drawTreeLine(scene, eachTile, px);
     // Once found, the target (and its pulse) goes over the searcher beside it.
     if (scene.highlight) this.drawSearcher(scene, px);
     this.drawMarks(scene, eachTile, px);
@@ -275,6 +276,36 @@ export class Renderer {
   }
 
   /** A planner's path ahead: dashed, over the path it continues. */
+  /** The tree node in focus: its moves from the searcher, dotted white, ending in a ring. */
+  drawTreeLine(scene, eachTile, px) {
+    const cells = scene.treeLine;
+    if (!cells?.length) return;
+    const ctx = this.ctx;
+    const p = new Path2D();
+    if (cells.length > 1) appendWrapPath(p, cells, 0, cells.length, scene.n);
+    const last = cells[cells.length - 1];
+    const [x, y] = [(last % scene.n) + 0.5, Math.floor(last / scene.n) + 0.5];
+    this.drawn.add('treeLine');
+    eachTile(() => {
+      ctx.setLineDash([Math.max(1.5 * px, 0.08), Math.max(4 * px, 0.2)]);
+      ctx.strokeStyle = COLORS.rim;
+      ctx.lineWidth = 6 * px;
+      ctx.stroke(p);
+      ctx.strokeStyle = INK.white;
+      ctx.lineWidth = 3.5 * px;
+      ctx.stroke(p);
+      ctx.setLineDash([]);
+      ctx.beginPath();
+      ctx.arc(x, y, 0.36, 0, 2 * Math.PI);
+      ctx.strokeStyle = COLORS.rim;
+      ctx.lineWidth = 5 * px;
+      ctx.stroke();
+      ctx.strokeStyle = INK.white;
+      ctx.lineWidth = 2.5 * px;
+      ctx.stroke();
+    });
+  }
+
   drawIntent(scene, eachTile, px) {
     if (!scene.intent || scene.intent.length < 2) return;
     const ctx = this.ctx;

@@ -13,6 +13,9 @@ const DEFAULT_HEAT = 'prior';
 const TEACHING_HEAT = 'visits';
 const OPTION_IDS = ['layer-path', 'layer-intent', 'layer-grid', 'reveal', 'tiling', 'log-scale', 'layer-arrows'];
 const TRACE_IDS = ['layer-rollouts', 'layer-practice'];
+/** A box by its name in a link: a layer's name, or an option's id. */
+const boxOf = (name) => document.getElementById(OPTION_IDS.includes(name) || TRACE_IDS.includes(name) ? name : `layer-${name}`) ?? document.getElementById(name);
+
 /** A yes/no layer is a mask for the hatch: opaque where yes. */
 const MASK_ALPHA = [0, 255];
 
@@ -121,6 +124,38 @@ export class ViewState {
       tiling: $('tiling').checked,
       masks: this.masks,
     };
+  }
+
+  /** Every box of the view (heat chips, hatched layers, options, traces): their ids without `layer-`. */
+  boxes() {
+    return [...this.layers.map((l) => `layer-${l.name}`), ...OPTION_IDS, ...TRACE_IDS].map((id) => id.replace(/^layer-/, ''));
+  }
+
+  /** What is ticked, for a link: the names of the ticked boxes joined by commas, or '' when it is the page's default. */
+  shown() {
+    const on = this.boxes().filter((b) => boxOf(b).checked).join(',');
+    this.defaults ??= on;
+    return on === this.defaults ? '' : on;
+  }
+
+  /**
+   * Ticks exactly the boxes named in `text` (a link's `show`); returns the
+   * names it does not know (ticking nothing for them). A second heat layer
+   * named is left out: one ramp at a time.
+   */
+  applyShown(text) {
+    this.defaults ??= this.boxes().filter((b) => boxOf(b).checked).join(',');
+    const want = new Set(text.split(',').filter(Boolean));
+    const known = new Set(this.boxes());
+    let heat = null;
+    for (const b of this.boxes()) {
+      const on = want.has(b);
+      const isHeat = this.heats.some((l) => l.name === b);
+      if (isHeat && on && heat) continue;
+      if (isHeat && on) heat = b;
+      boxOf(b).checked = on && (!isHeat || heat === b);
+    }
+    return [...want].filter((b) => !known.has(b));
   }
 
   /** Ticks the layers and options of the teaching view. */

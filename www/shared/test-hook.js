@@ -6,10 +6,22 @@
 //   state()            the controller's state: idle | running | paused | found | capped | error
 //   speed()            the controller's speed: loops per frame, or 'max'
 //   runs()             a snapshot per run: { label, config, searcher, deliberates, n, start,
-//                      target, optimal, status, steps, pathLen, work, rolloutSteps, scores,
+//                      target, optimal, status, steps, revisits, pathLen, work, rolloutSteps, scores,
 //                      intent, planning }
 //   path(i = 0)        run i's path so far (cells, start first)
-//   dispatch(cmd)      a controller command (see www/live/controller.js)
+//   dispatch(cmd)      a controller command (see www/live/controller.js), e.g. { type: 'stepPhase' }
+//   phase()            the last phase the first run did, select | expand | rollout | backup, or null
+//                      (between loops, or not stepped phase by phase)
+//   timeline()         the engine's point of the first run { move, loop, phase, end }, or null
+//   seek(point)        seeks to { move, loop, phase } (a 'seek' command); resolves to { ok, error }
+//                      once the page has drawn that point
+//   back(unit)         one phase | loop | move back, as seek
+//   tree(query, run)   the engine's tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
+//                      move, visits, value, … }], total_nodes }), or null for a searcher without one
+//   narration()        the narration line's text
+//   treeView(i = 1)    the tree panel: { shown, nodes, drawn, hover, marked: [node indices], focus,
+//                      cell: node i's cell, at: node i's client point or null }
+//   treeFocus(focus)   shows 'all', 'best' or a node id's subtree (as a click on a node)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)
 //   resets()           how many resets the controller has had (a click that restarted the run adds one)
@@ -19,7 +31,8 @@
 //   legend()           what the legend names now: { marks: [data-mark], layers: [data-layer] }
 //   watchFrames()      starts a fresh frameLog(): per drawn frame { ticket, ts, runs: [{ start,
 //                      configStart, path0, position, status }], marks and at (board 0's: see drawn) }
-//   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers
+//   batch.results()    the last batch's trial results; batch.usePool(k) a pool of k workers;
+//                      batch.paired() a race's paired summary (the engine's summarizePaired), or null
 //   view()             which view is shown: live | experiments; show(view) switches
 //   experiments        the Experiments view:
 //     state()            its state (name, trials, seed, preset, params, sweep, series); setState(s)
@@ -36,8 +49,16 @@
 //     config(index)      that point's config
 
 import { experimentSpec } from './url-state.js';
+import { treeViewState } from '../live/tree-panel.js';
 
-export function installTestHook({ controller, engine, batch, experiments, showView, boards }) {
+/** Resolves to `done`'s answer once two animation frames have passed (the page has drawn it). */
+async function shown(done) {
+  const answer = await done;
+  await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
+  return answer;
+}
+
+export function installTestHook({ controller, engine, batch, experiments, showView, boards, tree }) {
   // What each drawn frame showed, once a test asks (bounded, so a long soak
   // does not grow it): the reset ticket, and per run its configured start,
   // the first path cell and the position.
@@ -74,6 +95,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
         optimal: r.optimal,
         status: r.status(),
         steps: r.frame.steps,
+        revisits: r.frame.revisits,
         pathLen: r.pathLen,
         work: r.work(),
         rolloutSteps: r.rolloutSteps(),
@@ -83,6 +105,14 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
       })),
     path: (i = 0) => controller.runs[i]?.path() ?? [],
     dispatch: (cmd) => controller.dispatch(cmd),
+    phase: () => controller.runs[0]?.frame.point?.phase ?? null,
+    timeline: () => (controller.timeline ? structuredClone(controller.timeline) : null),
+    seek: (point) => shown(controller.dispatch({ type: 'seek', point })),
+    back: (unit) => shown(controller.dispatch({ type: 'back', unit })),
+    tree: async (query = {}, run = 0) => (await controller.dispatch({ type: 'request', request: 'tree', payload: { run, query } }))?.tree ?? null,
+    narration: () => document.getElementById('narration').textContent,
+    treeView: (i = 1) => treeViewState(tree, i),
+    treeFocus: (focus) => tree.setFocus(focus),
     request: (type, payload) => controller.dispatch({ type: 'request', request: type, payload }),
     engine,
     resets: () => controller.resets,
@@ -93,6 +123,7 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     }),
     batch: {
       results: () => batch.results,
+      paired: () => batch.paired,
       usePool: (k) => batch.usePool(k),
       killWorker: (i) => batch.pool?.killWorker(i) ?? false,
       replaced: () => batch.pool?.replaced ?? 0,

@@ -11,6 +11,11 @@ function shown(raw) {
   return s.length > 40 ? `${s.slice(0, 40)}…` : s;
 }
 
+/** Speeds of one phase every so many seconds (the worker steps a phase when that long has passed). */
+export const PHASE_SPEEDS = ['2s', '1s', '0.5s'];
+
+import { LESSONS } from '../live/lessons.js';
+
 const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
 /**
@@ -37,8 +42,8 @@ export function viewSpecs(races) {
   return {
     speed: {
       def: 10,
-      help: 'loops per frame, an integer in 1..=1000000, or max',
-      parse: (s) => (s === 'max' ? 'max' : /^\d{1,7}$/.test(s) && +s >= 1 && +s <= 1e6 ? +s : undefined),
+      help: 'loops per frame, an integer in 1..=1000000, or max, or one phase every 2s, 1s or 0.5s',
+      parse: (s) => (s === 'max' || PHASE_SPEEDS.includes(s) ? s : /^\d{1,7}$/.test(s) && +s >= 1 && +s <= 1e6 ? +s : undefined),
       text: String,
     },
     autoplay: {
@@ -46,6 +51,36 @@ export function viewSpecs(races) {
       help: 'one of 1, 0, true, false, yes, no, on, off',
       parse: (s) => (Object.hasOwn(BOOL, s) ? BOOL[s] : undefined),
       text: (v) => (v ? '1' : '0'),
+    },
+    vs: {
+      def: '',
+      help: 'the race opponent\'s parameters that differ, as key=value pairs separated by spaces (e.g. rollout=levy c=0.5)',
+      parse: (s) => (s.length <= 400 && /^[\w.,:=+ -]*$/.test(s) ? s.trim().replace(/\s+/g, ' ') : undefined),
+      text: String,
+    },
+    show: {
+      def: '',
+      help: 'the layers and options shown, as names separated by commas (e.g. visits,path,rollouts), or empty for the default',
+      parse: (s) => (s.length <= 300 && /^[a-z,-]*$/.test(s) ? s : undefined),
+      text: String,
+    },
+    at: {
+      def: '',
+      help: 'a point of the run to open at, paused: MOVE, MOVE.LOOP or MOVE.LOOP.PHASE (phase: select, expand, rollout or backup)',
+      parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
+      text: String,
+    },
+    tree: {
+      def: '',
+      help: 'the tree view\'s focus: best (the best line) or a node id, or empty for the whole tree',
+      parse: (s) => (s === '' || s === 'best' || /^\d{1,9}$/.test(s) ? s : undefined),
+      text: String,
+    },
+    lesson: {
+      def: '',
+      help: `one of ${LESSONS.map((l) => l.id).join(', ')}, or empty`,
+      parse: (s) => (s === '' || LESSONS.some((l) => l.id === s) ? s : undefined),
+      text: String,
     },
     race: {
       def: '',
@@ -83,7 +118,50 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
     const def = known.get(e.field)?.default;
     messages.push(`Invalid ${e.field}=${JSON.stringify(shown(e.value))}: allowed ${e.allowed}. Using the default ${e.field}=${def || '(none)'}.`);
   }
+  if (view.vs) {
+    const bad = opponentError(engine, config, view.vs);
+    if (bad) {
+      messages.push(`Invalid vs=${JSON.stringify(shown(view.vs))}: ${bad}. Using no changes.`);
+      view.vs = '';
+    }
+  }
   return { config, view, messages };
+}
+
+/** A timeline point as a link's `at` ("12.3.rollout"), or '' for the start. */
+export function pointToAt(p) {
+  if (!p || (!p.move && !p.loop && !p.phase)) return '';
+  return [p.move, ...(p.loop || p.phase ? [p.loop] : []), ...(p.phase ? [p.phase] : [])].join('.');
+}
+
+/** A link's `at` as a timeline point { move, loop, phase } (null for ''). */
+export function atToPoint(at) {
+  if (!at) return null;
+  const [move, loop = '0', phase = null] = at.split('.');
+  return { move: Number(move), loop: Number(loop), phase };
+}
+
+/** `vs` text ("key=value key=value") as [key, value] pairs. */
+export function opponentPairs(vs) {
+  return (vs ?? '').split(' ').filter(Boolean).map((kv) => {
+    const at = kv.indexOf('=');
+    return at < 0 ? [kv, ''] : [kv.slice(0, at), kv.slice(at + 1)];
+  });
+}
+
+/** The race opponent: `config` with the race option's `pairs`, then the `vs` pairs, set through the engine (throws naming a bad one). */
+export function opponentConfig(engine, config, pairs, vs) {
+  return [...pairs, ...opponentPairs(vs)].reduce((c, [key, v]) => engine.setParam(c, key, v), config);
+}
+
+/** Why `vs` cannot make an opponent of `config` (the engine's message), or ''. */
+export function opponentError(engine, config, vs) {
+  try {
+    opponentConfig(engine, config, [], vs);
+    return '';
+  } catch (err) {
+    return err.message;
+  }
 }
 
 /**

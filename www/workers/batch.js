@@ -1,7 +1,9 @@
 // The batch panel: many trials of the current configuration in a pool of
 // Web Workers, summarised by the engine (the same statistics as the CLI's
 // --json). Trial i depends only on (config, i), so any number of workers
-// gives the same results.
+// gives the same results. In a race, both sides run on the same targets
+// and the engine summarises the pairs: the paired difference with its
+// interval and the wins.
 
 import { $, setText, fmtInt, showMessage } from '../shared/ui.js';
 import { WorkerPool } from './worker-pool.js';
@@ -12,10 +14,13 @@ export class BatchPanel {
    * @param {object} engine the page's wasm module
    * @param {object} schema the engine's schema (limits of trials and step_cap)
    * @param {() => object} config the current engine config
+   * @param {() => object|null} opponent the race opponent's config, or null
    */
-  constructor(engine, schema, config) {
+  constructor(engine, schema, config, opponent = () => null) {
     this.engine = engine;
     this.config = config;
+    this.opponent = opponent;
+    this.paired = null;
     this.pool = null;
     this.results = null;
     const cap = schema.params.find((p) => p.key === 'step_cap');
@@ -31,13 +36,20 @@ export class BatchPanel {
     this.pool = new WorkerPool(size, engineModule());
   }
 
+  /** A config as the batch runs it: its step cap, no traces kept. */
+  batchConfig(config) {
+    return this.engine.setParam(this.engine.setParam(config, 'step_cap', $('batch-cap').value), 'keep_traces', '0');
+  }
+
   async run() {
     let trials;
     let cfg;
+    let opp = null;
     try {
       trials = this.engine.parseTrials($('batch-trials').value);
-      cfg = this.engine.setParam(this.config(), 'step_cap', $('batch-cap').value);
-      cfg = this.engine.setParam(cfg, 'keep_traces', '0');
+      cfg = this.batchConfig(this.config());
+      const o = this.opponent();
+      if (o) opp = this.batchConfig(o);
     } catch (err) {
       showMessage(`Batch: ${err.message}`);
       return;
@@ -48,17 +60,25 @@ export class BatchPanel {
     $('batch-run').disabled = true;
     $('batch-stop').disabled = false;
     $('batch-summary').hidden = true;
+    $('batch-paired').hidden = true;
     const progress = $('batch-progress');
     const t0 = performance.now();
     setText(progress, `Running ${trials} trials on ${workers}…`);
     document.body.dataset.batch = 'running';
     try {
-      const results = await pool.run(cfg, trials, (_, __, done) => {
-        setText(progress, `${done} / ${trials} trials (${workers}, ${((performance.now() - t0) / 1000).toFixed(1)} s)`);
-      });
+      const tick = (_, __, done) => setText(progress, `${done} / ${trials} ${opp ? 'paired ' : ''}trials (${workers}, ${((performance.now() - t0) / 1000).toFixed(1)} s)`);
+      const results = opp ? await pool.runPaired(cfg, opp, trials, tick) : await pool.run(cfg, trials, tick);
       const secs = (performance.now() - t0) / 1000;
       this.results = results;
-      this.show(this.engine.summarizeTrials(Float64Array.from(results.flat())), secs);
+      if (opp) {
+        // Side A's trials alone, then the pairs.
+        this.show(this.engine.summarizeTrials(Float64Array.from(results.flatMap((r) => r.slice(0, r.length / 2)))), secs);
+        this.paired = this.engine.summarizePaired(Float64Array.from(results.flat()));
+        this.showPaired(this.paired);
+      } else {
+        this.paired = null;
+        this.show(this.engine.summarizeTrials(Float64Array.from(results.flat())), secs);
+      }
       setText(progress, `${trials} trials in ${secs.toFixed(2)} s on ${workers} (${(trials / secs).toFixed(1)} trials/s).`);
       document.body.dataset.batch = 'done';
     } catch (err) {
@@ -69,6 +89,32 @@ export class BatchPanel {
       $('batch-run').disabled = false;
       $('batch-stop').disabled = true;
     }
+  }
+
+  /** The engine's paired summary of A against B as a table. */
+  showPaired(p) {
+    const num = (v, d = 1) => (Number.isFinite(v) ? v.toFixed(d) : '—');
+    const d = p.difference;
+    const rows = [
+      ['Pairs (same target)', String(p.trials)],
+      ['Mean steps A / B', `${num(p.mean_a)} / ${num(p.mean_b)}`],
+      [`Mean difference A − B [${Math.round(100 * d.level)}% interval, ${d.method}]`, `${num(d.estimate)} [${num(d.lo)}, ${num(d.hi)}]`],
+      ['SD of the differences', num(p.sd_difference)],
+      ['A faster / tie / B faster', `${p.a_wins} / ${p.ties} / ${p.b_wins}`],
+      ['Found A / B', `${p.found_a} / ${p.found_b}`],
+    ];
+    const body = $('batch-paired').querySelector('table').tBodies[0];
+    body.replaceChildren();
+    for (const [k, v] of rows) {
+      const tr = body.insertRow();
+      tr.insertCell().textContent = k;
+      tr.insertCell().textContent = v;
+    }
+    const verdict = !Number.isFinite(d.lo) || !Number.isFinite(d.hi) ? 'too few pairs for an interval'
+      : d.hi < 0 ? 'A takes fewer steps: the interval lies below 0'
+      : d.lo > 0 ? 'B takes fewer steps: the interval lies above 0' : 'no clear difference: the interval holds 0';
+    setText('batch-paired-note', `Race: A against B on the same ${p.trials} targets: ${verdict}.`);
+    $('batch-paired').hidden = false;
   }
 
   /** The engine's summary (CLI --json field names) as a table. */

@@ -13,6 +13,12 @@
 //   play   { speed } / pause / speed { speed }
 //   frame  { requests }                 (at a set speed: that many loops first) answers { frames }
 //   stepLoop / stepMove { requests }    one loop / one move on each unfinished run; answers { frames }
+//   stepPhase { requests }              one phase of the loop in flight on each run; answers { frames, steps }
+//   seek { point, requests }            every run to a timeline point { move, loop, phase }; answers { frames }
+//   back { unit, requests }             one phase | loop | move back; answers { frames }
+//   advanceTo { point, requests }       steps the runs forward as far as `point` (moves, loops,
+//                                       phases), then seeks it exactly; answers { frames }
+//   tree { run, query }                 the decision's tree (Race.tree); treeColumns { run, query } as columns
 //                                       (a move a planner has yet to plan is made in calls of bounded
 //                                       length, answering other requests between them)
 //   export                              answers { runs } (Race.export())
@@ -21,7 +27,10 @@
 //   panicForTest { message }            a deliberate wasm panic (the page's error path is tested with it)
 //   oomForTest                          allocates until wasm memory runs out (a real out-of-memory abort)
 // Every answer carries the run generation `gen`, so the page drops answers
-// meant for runs it has already replaced.
+// meant for runs it has already replaced; every frames answer carries the
+// timeline (Race.timeline(): the point shown and the furthest reached).
+// A phase speed ('2s', '1s', '0.5s': one phase every so long) steps one
+// phase per frame request once that long has passed.
 
 import { loadEngine, describeError } from '../shared/engine.js';
 
@@ -38,6 +47,7 @@ const st = {
   speed: 10,
   loopMs: 0.05, // measured ms per loop per run: sizes the chunks
   pumping: false,
+  lastPhase: 0, // when the last phase was stepped at a phase speed
   trapped: false,
   // Where the worker's time goes (read by the browser benchmark).
   usage: { since: performance.now(), workMs: 0, frameMs: 0, frames: 0 },
@@ -60,6 +70,9 @@ function nextTurn() {
 }
 
 const running = () => (st.race ? st.race.running() : 0);
+
+/** The ms between phases at a phase speed ('2s': one phase every 2 s), else 0. */
+const phaseSpeedMs = (speed) => (typeof speed === 'string' && speed.endsWith('s') ? 1000 * Number(speed.slice(0, -1)) : 0);
 
 /**
  * Runs loops on every unfinished run for about `budgetMs`, at most
@@ -120,7 +133,7 @@ function frames(requests = []) {
   }
   st.usage.frameMs += performance.now() - t0;
   st.usage.frames++;
-  return { frames: out, transfer };
+  return { frames: out, transfer, timeline: st.race.timeline() };
 }
 
 function fail(id, err) {
@@ -150,6 +163,7 @@ const HANDLERS = {
   play(msg) {
     st.speed = msg.speed;
     st.playing = true;
+    st.lastPhase = 0;
     schedule();
     return {};
   },
@@ -163,8 +177,48 @@ const HANDLERS = {
     return {};
   },
   frame(msg) {
-    if (st.playing && st.speed !== 'max') work(FRAME_WORK_MS, st.speed);
+    const phaseMs = phaseSpeedMs(st.speed);
+    if (st.playing && phaseMs) {
+      const now = performance.now();
+      if (now - st.lastPhase >= phaseMs && running()) {
+        st.lastPhase = now;
+        st.race.stepPhase();
+      }
+    } else if (st.playing && st.speed !== 'max') work(FRAME_WORK_MS, st.speed);
     return frames(msg.requests);
+  },
+  stepPhase(msg) {
+    const steps = st.race.stepPhase();
+    return { ...frames(msg.requests), steps };
+  },
+  seek(msg) {
+    st.race.seek(msg.point);
+    return frames(msg.requests);
+  },
+  back(msg) {
+    st.race.back(msg.unit);
+    return frames(msg.requests);
+  },
+  advanceTo(msg) {
+    const { race } = st;
+    const p = { loop: 0, phase: null, ...msg.point };
+    const at = () => race.timeline().end;
+    const before = (t) => t.move < p.move || (t.move === p.move && t.loop < p.loop);
+    while (at().move < p.move && race.running()) race.stepMove();
+    while (before(at()) && race.running()) race.stepLoop();
+    for (let k = 0; p.phase && k < 4 && race.running(); k++) {
+      const t = at();
+      if (t.move !== p.move || t.loop !== p.loop || t.phase === p.phase) break;
+      race.stepPhase();
+    }
+    race.seek(p);
+    return frames(msg.requests);
+  },
+  tree(msg) {
+    return { tree: st.race.tree(msg.run ?? 0, msg.query) };
+  },
+  treeColumns(msg) {
+    return { tree: st.race.treeColumns(msg.run ?? 0, msg.query) };
   },
   stepLoop(msg) {
     st.race.stepLoop();

@@ -2,8 +2,9 @@
 // units for www/workers/worker-pool.js. No game logic: each task is one facade call.
 // Messages in:  { init: WebAssembly.Module }   (optional, first) the page's compiled engine
 //               { id, seq, task }             task: { kind: 'trial', config, index }
+//                                                  or { kind: 'paired', a, b, index } (two configs, one target)
 //                                                  or { kind: 'experiment', spec, from, to }
-// Messages out: { id, seq, result }  (a trial: number[7]; experiment units: a
+// Messages out: { id, seq, result }  (a trial: number[7], a paired trial number[14]; experiment units: a
 //               Float64Array of rows, its buffer transferred), or { id, seq, error: string }.
 import { loadEngine, describeError } from '../shared/engine.js';
 
@@ -13,6 +14,8 @@ function run(engine, task) {
   switch (task.kind) {
     case 'trial':
       return Array.from(engine.runTrial(task.config, task.index));
+    case 'paired':
+      return Array.from(engine.runPairedTrial(task.a, task.b, task.index));
     case 'experiment':
       return engine.experimentRun(task.spec, task.from, task.to);
     default:

@@ -174,4 +174,10 @@ export class WorkerPool {
     const tasks = Array.from({ length: trials }, (_, index) => ({ kind: 'trial', config, index }));
     return this.runTasks(tasks, onResult);
   }
+
+  /** As run(), each trial of config `a` and of config `b` on the same target (runPairedTrial: 14 numbers). */
+  runPaired(a, b, trials, onResult = () => {}) {
+    const tasks = Array.from({ length: trials }, (_, index) => ({ kind: 'paired', a, b, index }));
+    return this.runTasks(tasks, onResult);
+  }
 }

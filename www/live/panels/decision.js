@@ -58,6 +58,38 @@ function showScores(run, s) {
   setText('decision-note', `${run.label} scores each move by ${s.meaning} (${better} is better) and took ${MOVE_NAMES[s.chosen]}.`);
 }
 
+const names = (flags) => flags.flatMap((l, m) => (l ? [MOVE_NAMES[m]] : [])).join(', ');
+
+/** The UCT split of move `m` worked out, from the engine's terms. */
+function worked(d, m) {
+  const c = d.children[m];
+  if (!c.visits) return `${MOVE_NAMES[m]}: never tried, UCT = ∞`;
+  return `${MOVE_NAMES[m]}: ${fmtNum(c.mean)} + ${fmtNum(d.c, 3)}·√(ln ${fmtInt(d.parent_visits)} / ${fmtInt(c.visits)}) = ${fmtNum(c.mean)} + ${fmtNum(c.explore)} = ${fmtNum(c.uct)}`;
+}
+
+/**
+ * The note under the table: the final rule's move (◆) and why, apart from
+ * the highest UCT (▲, what selection tries next), and under `cells` what
+ * the visits count.
+ */
+function decisionNote(run, d, running) {
+  let note = `N(v) = ${fmtInt(d.parent_visits)}, c = ${fmtNum(d.c, 3)}.`;
+  const leads = d.leading.flatMap((l, m) => (l ? [m] : []));
+  const best = d.highest_uct.flatMap((l, m) => (l ? [m] : []));
+  if (running && leads.length) {
+    const tie = leads.length > 1 ? ` (tied: one at random)` : '';
+    note += ` ◆ If the decision ended now, the final rule (${ruleLabel(d.rule)}) would move ${names(d.leading)}${tie}.`;
+  } else note += ` Final move: ${ruleLabel(d.rule)}.`;
+  if (running && best.length) {
+    note += ` ▲ Highest UCT: ${names(d.highest_uct)}${best.length > 1 ? ' (tied)' : ''}, the move the next loop selects. ${worked(d, best[0])}.`;
+  }
+  if (run.config.variant === 'cells') {
+    note += ` Under cells, N(v) = ${fmtInt(d.parent_visits)} counts this cell's table entry, while the four N(vᵢ) add up to ${fmtInt(d.children_visits)}:`
+      + ' the table counts every rollout that passed through a neighbour (pass-through visits, in this move and earlier ones), not only the loops that picked it. "Picked" counts the loops of this decision that selected the move.';
+  }
+  return note;
+}
+
 /** Shows the decision under way of `run`. */
 export function updateDecision(run) {
   const scores = run.frame.scores;
@@ -85,7 +117,9 @@ export function updateDecision(run) {
   d.children.forEach((c, m) => {
     const tr = trs[m];
     tr.classList.toggle('chosen', running && d.leading[m]);
-    setText(tr.cells[0], `${ARROWS[m]} ${MOVE_NAMES[m]}`);
+    tr.classList.toggle('uct-best', running && d.highest_uct[m]);
+    // Marked by glyph as well as colour: ◆ the final rule's move, ▲ the highest UCT.
+    setText(tr.cells[0], `${ARROWS[m]} ${MOVE_NAMES[m]}${running && d.leading[m] ? ' ◆' : ''}${running && d.highest_uct[m] ? ' ▲' : ''}`);
     // Visits: N(vᵢ) of the child, picks this decision, and a bar.
     const td = tr.cells[1];
     // A run without a decision yet (or a walker) left plain text here.
@@ -101,17 +135,7 @@ export function updateDecision(run) {
     setText(tr.cells[3], c.visits ? fmtNum(c.explore) : '∞');
     setText(tr.cells[4], c.visits ? fmtNum(c.uct) : '∞');
   });
-  let note = `N(v) = ${fmtInt(d.parent_visits)}, c = ${fmtNum(d.c, 3)}. Final move: ${ruleLabel(d.rule)}.`;
-  const leads = d.leading.flatMap((l, m) => (l ? [m] : []));
-  if (running && leads.length > 1) note += ` Tied: ${leads.map((m) => MOVE_NAMES[m]).join(', ')} (one at random).`;
-  if (running && leads.length) {
-    const m = leads[0];
-    const c = d.children[m];
-    if (c.visits) {
-      note += ` ${MOVE_NAMES[m]}: ${fmtNum(c.mean)} + ${fmtNum(d.c, 3)}·√(ln ${fmtInt(d.parent_visits)} / ${fmtInt(c.visits)}) = ${fmtNum(c.mean)} + ${fmtNum(c.explore)} = ${fmtNum(c.uct)}.`;
-    }
-  }
-  if (run.config.variant === 'cells') note += ' (cells: N(vᵢ) counts every rollout that passed through the neighbour.)';
+  let note = decisionNote(run, d, running);
   // The belief MCTS makes its plan before the decision's first loop.
   const p = run.frame.planning;
   if (p) note = `${run.label} is making its plan before the first loop (${planningText(p)}); the Planned path layer shows the path it is working on. ${note}`;

@@ -49,6 +49,7 @@ export function updateStats(runs, meter, { reveal }) {
   const f = run.frame;
   const known = f.status === 'found' || reveal;
   setText('steps', fmtInt(f.steps));
+  setText('revisits', f.revisits === undefined ? '–' : `${fmtInt(f.revisits)} of ${fmtInt(f.steps)} moves`);
   setText('optimal', known ? String(run.optimal) : '?');
   setText('ratio', f.status === 'found' && f.ratio === null ? '— (optimal 0)' : fmtRatio(f.ratio));
   setText('lower-bound', run.lower_bound.toFixed(1));

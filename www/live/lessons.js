@@ -1,0 +1,42 @@
+// The lessons: each a link's query (engine parameters and the page's view:
+// speed, layers, race), a few plain sentences, what to look at, and the
+// claim it shows. tests/e2e/lessons.test.mjs checks every claim with the
+// engine on the lesson's own settings. Pure data: no DOM.
+
+export const LESSONS = [
+  {
+    id: 'phases',
+    title: 'One loop, phase by phase',
+    query: 'n=11&sigma=2&loops=40&seed=3&start=2,2&variant=tree&keep_traces=3&speed=1s&show=visits,path,intent,grid,arrows,rollouts,practice',
+    text: 'Each MCTS loop has four phases. Select walks down the tree by UCT; Expand adds one node; Roll out walks at random from it until it detects the practice target (◇); Back up adds the reward to every node on the way.',
+    look: 'Watch the phase strip and the line under it. In the tree, the selection is yellow, the new node ringed, the rollout dashed, and the back-up climbs to the root. Pause and press p for one phase, Shift+← to go back one.',
+    claim: 'Every loop runs the four phases in order, and each loop adds one visit to the root.',
+  },
+  {
+    id: 'uct-c',
+    title: 'UCT and the exploration constant c',
+    query: 'n=15&sigma=3&loops=60&seed=5&variant=tree&c=0.2&vs=c=3&speed=1&show=visits,path,grid,arrows,rollouts,practice',
+    text: 'UCT scores a move by its mean reward plus c·√(ln N / Nᵢ). A small c trusts the means and keeps picking the move that looks best; a large c spreads the loops over all four moves.',
+    look: 'Board A has c = 0.2, board B c = 3, on the same target. Compare the decision arrows: A’s are lopsided, B’s even. The tree view shows A’s tree.',
+    claim: 'Over a decision, the most picked move takes a larger share of the loops with c = 0.2 than with c = 3.',
+  },
+  {
+    id: 'theorem1',
+    title: 'Theorem 1: more loops, a shorter path',
+    query: 'prior=delta&seed=5&loops=10&vs=loops=100&speed=20&show=visits,path,grid,arrows,rollouts,practice',
+    text: 'When the target’s cell is known (a delta prior), the paper proves that MCTS’s move tends to the optimal one as the loops per move L grow. Here L = 10 races L = 100 from the same start.',
+    look: 'Watch the two paths and the scoreboard: the path with more loops heads straighter for the target. Then run a batch: it compares both on the same trials.',
+    claim: 'Over paired trials, L = 100 takes fewer steps than L = 10 (its excess over the shortest path is smaller).',
+  },
+  {
+    id: 'theorem2',
+    title: 'Theorem 2: a nearly self-avoiding walk',
+    query: 'prior=uniform&n=60&rv=1&loops=50&rollout_cap=2000&seed=3&race=rw&speed=5&show=visits,path,grid',
+    text: 'When every cell is equally likely (a uniform prior), the paper proves that MCTS with random-walk rollouts behaves like a walk that avoids its own path: stepping back onto a searched cell gains nothing. A random walk, raced beside it, keeps stepping back.',
+    look: 'Compare the two paths and the Revisits count under This run (board A) with the scoreboard: MCTS almost never revisits a cell.',
+    claim: 'Over their first 60 moves, MCTS revisits under 5% of its moves; the random walk over 25%.',
+  },
+];
+
+/** The lesson with id `id`, or undefined. */
+export const lessonById = (id) => LESSONS.find((l) => l.id === id);
