@@ -226,7 +226,7 @@ fn regenerate(doc: &str) -> (String, Vec<String>) {
             Ok(t) => out += &t,
             Err(e) => {
                 errors.push(e);
-                out += &rest[open_end..close].trim_start_matches('\n').to_string();
+                out += rest[open_end..close].trim_start_matches('\n');
             }
         }
         out += END;
