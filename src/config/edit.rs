@@ -221,6 +221,7 @@ impl Config {
         match (self.target, self.prior) {
             (Some([x, y]), _) => format!("target ({x},{y})"),
             (None, PriorKind::Gaussian) => format!("gaussian sigma={}", fmt_float(self.sigma)),
+            (None, PriorKind::Code) => format!("code sigma={}", fmt_float(self.sigma)),
             (None, k) => k.name().to_string(),
         }
     }
