@@ -347,14 +347,15 @@ fn table_cmd(write: bool) -> Result<(), String> {
             (true, false) => "moves agree, excess differs",
             (false, false) => "differs",
         };
+        let verdict = |z, s: &Sample| format!("{} ({} of {} capped)", word(z), s.capped, s.trials);
         let _ = writeln!(
             verdicts,
             "| {n} | {sigma} | {} ({} capped, {} index errors) | {} | {} |",
             code.trials + code.errors,
             code.capped,
             code.errors,
-            word(zp),
-            word(zr)
+            verdict(zp, preset),
+            verdict(zr, reading),
         );
         for l in pins(n, sigma)? {
             pin_lines.push(format!("* N = {n}, σ = {sigma}: {l}"));

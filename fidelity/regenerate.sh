@@ -28,7 +28,7 @@ for step in $steps; do
         nice -n 10 "$x" mirror "$1" "$2" 0 "$3" 1 >"$here/data/mirror-n$1-s$2.csv"
       done ;;
     crate)
-      for p in "20 0 10000" "20 5 5000" "40 0 3000" "40 5 1000"; do
+      for p in "20 0 10000" "20 5 5000" "40 0 3000" "40 5 800"; do
         set -- $p
         nice -n 10 "$x" crate "$1" "$2" "$3" 1 >"$here/data/crate-n$1-s$2.tsv"
       done ;;
