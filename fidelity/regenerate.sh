@@ -6,7 +6,8 @@
 #   mirror  the code's trials: data/mirror-nN-sS.csv (examples/fidelity.rs
 #           `mirror`, trials 0..COUNT-1, seed 1, the seeds of run_code.sh)
 #   crate   the crate's two readings: data/crate-nN-sS.tsv (`crate`)
-#   table   the tables between the README's markers, from data/ (`table`);
+#   table   the tables between the markers of README.md and EXPERIMENTS.md,
+#           from data/ (`table`);
 #           also checks every Octave trial (data/code-*.csv) against the
 #           mirror
 #   cause   the code with one departure changed at a time (`cause`)
