@@ -442,16 +442,18 @@ fn cause_cmd(a: &[String]) -> Result<(), String> {
     Ok(())
 }
 
-/// Moves and excess on an N-torus with torus detection: the optimum is the
-/// torus ℓ1 distance less the one cell the sensor covers.
+/// Moves and excess with torus detection: the optimum is the torus ℓ1
+/// distance less the one cell the sensor covers. Index errors are counted
+/// and left out, as in [`Sample::of_code`].
 fn torus_sample(rows: &[mirror::Row], sw: mirror::Switches) -> Sample {
     let p = sw.period;
     let d = |a: i64, b: i64| (a - b).rem_euclid(p).min((b - a).rem_euclid(p));
-    let moves: Vec<f64> = rows.iter().map(|r| (r.steps - 1).max(0) as f64).collect();
-    let excess: Vec<f64> = rows
+    let ok: Vec<&mirror::Row> = rows.iter().filter(|r| r.steps >= 0).collect();
+    let moves: Vec<f64> = ok.iter().map(|r| (r.steps - 1).max(0) as f64).collect();
+    let excess: Vec<f64> = ok
         .iter()
         .zip(&moves)
         .map(|(r, m)| m - (d(r.tx, sw.start.0) + d(r.ty, sw.start.1) - 1).max(0) as f64)
         .collect();
-    Sample::of(&moves, &excess, 0)
+    Sample::of(&moves, &excess, rows.len() - ok.len())
 }
