@@ -24,7 +24,7 @@ steps=${*:-table}
 for step in $steps; do
   case $step in
     mirror)
-      for p in "20 0 4000" "20 5 2000" "40 0 2000" "40 5 500"; do
+      for p in "20 0 4000" "20 5 2000" "40 0 2000" "40 5 1000"; do
         set -- $p
         nice -n 10 "$x" mirror "$1" "$2" 0 "$3" 1 >"$here/data/mirror-n$1-s$2.csv"
       done ;;
