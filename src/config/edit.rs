@@ -82,7 +82,7 @@ impl Config {
                 return Err(ParamError::new(
                     "prior",
                     "paint",
-                    "gaussian, delta or uniform unless a paint is given",
+                    "gaussian, delta, uniform or code unless a paint is given",
                 ));
             }
             prior::decode_paint(&self.paint, n)
