@@ -82,7 +82,7 @@ impl Config {
                 return Err(ParamError::new(
                     "prior",
                     "paint",
-                    "gaussian, delta or uniform unless a paint is given",
+                    "gaussian, delta, uniform or code unless a paint is given",
                 ));
             }
             prior::decode_paint(&self.paint, n)
@@ -221,6 +221,7 @@ impl Config {
         match (self.target, self.prior) {
             (Some([x, y]), _) => format!("target ({x},{y})"),
             (None, PriorKind::Gaussian) => format!("gaussian sigma={}", fmt_float(self.sigma)),
+            (None, PriorKind::Code) => format!("code sigma={}", fmt_float(self.sigma)),
             (None, k) => k.name().to_string(),
         }
     }

@@ -34,6 +34,7 @@ impl Config {
             (None, PriorKind::Gaussian) => PriorSpec::Gaussian { sigma: self.sigma },
             (None, PriorKind::Delta) => PriorSpec::Delta { cell: None },
             (None, PriorKind::Uniform) => PriorSpec::Uniform,
+            (None, PriorKind::Code) => PriorSpec::Code { sigma: self.sigma },
             (None, PriorKind::Paint) => PriorSpec::Weights {
                 weights: prior::decode_paint(&self.paint, n)
                     .map_err(|e| ParamError::new("paint", e, ParamKind::Paint.allowed()))?

@@ -14,7 +14,10 @@ named_enum! {
     pub enum Preset {
         /// The algorithm as the paper's text describes it.
         PaperText = "paper-text",
-        /// The selection and statistics of the authors' `MCTSgaussian.m`.
+        /// The selection and statistics of the authors' `MCTSgaussian.m`,
+        /// on the paper's N-torus. Their numbers at side N come from their
+        /// (N+1)-lattice: add `n = N + 1` and `prior = code`
+        /// (`fidelity/README.md`).
         PaperCode = "paper-code",
     }
 }

@@ -705,7 +705,7 @@ mod tests {
         assert!(plan(r#"{"name":"custom","sweep":{"key":"prior","values":["gaussian","uniform"]},"series":[{"label":"B","params":{"searcher":"rw","sigma":"3"}}]}"#).is_ok());
         assert_eq!(
             err(r#"{"name":"custom","sweep":{"key":"prior","values":["delta","uniform"]},"series":[{"label":"B","params":{"sigma":"3"}}]}"#),
-            "sigma does not apply to series \"B\": it applies with prior gaussian and no fixed target"
+            "sigma does not apply to series \"B\": it applies with prior gaussian or code and no fixed target"
         );
         assert_eq!(
             err(r#"{"name":"known-n20","params":{"n":"10"}}"#),

@@ -17,6 +17,10 @@ named_enum! {
         Uniform = "uniform",
         /// A painted grid of weights 0–15 (`paint`).
         Paint = "paint",
+        /// The authors' `gausstarget` on the lattice their code plays on
+        /// (`sigma`): run with n = N + 1 to reproduce `MCTSgaussian.m` at
+        /// side N ([`PriorSpec::Code`]).
+        Code = "code",
     }
 }
 
@@ -31,6 +35,12 @@ pub enum PriorSpec {
     Uniform,
     /// A user-supplied non-negative weight per cell, `y * n + x`.
     Weights { weights: Vec<f64> },
+    /// The authors' `gausstarget(N, σ)` with N = n − 1: x, y = round(N/2 +
+    /// σZ) wrapped with period N into 1..N. Their `MCTSgaussian.m` moves on
+    /// an (N+1)-torus with coordinates 0..N and starts at (1, 1); shifted by
+    /// one cell, that is this n-torus with the 1-based start (1, 1) and
+    /// these targets at 1-based (x, y), never in the last row or column.
+    Code { sigma: f64 },
 }
 
 /// A prior that cannot be built.
@@ -80,7 +90,16 @@ const UNIFORM_SIGMA_WIDTHS: f64 = 8.0;
 #[derive(Clone, Debug)]
 enum Sampler {
     Delta(u32),
-    Gaussian { mu: f64, sigma: f64 },
+    Gaussian {
+        mu: f64,
+        sigma: f64,
+    },
+    /// [`PriorSpec::Code`]: each coordinate wraps with `period` = n − 1.
+    Code {
+        mu: f64,
+        sigma: f64,
+        period: f64,
+    },
     Alias(Alias),
 }
 
@@ -141,6 +160,7 @@ impl TargetPrior {
                     (m, Sampler::Gaussian { mu, sigma: s })
                 }
             }
+            PriorSpec::Code { sigma } => code_prior(n, *sigma)?,
             PriorSpec::Uniform => {
                 let m = vec![1.0 / cells as f64; cells];
                 let a = Alias::new(&m);
@@ -197,9 +217,67 @@ impl TargetPrior {
                 let y = libm::round(mu + sigma * rng::standard_normal(rng)).rem_euclid(n) as u32;
                 y * self.n + x
             }
+            Sampler::Code { mu, sigma, period } => {
+                // gausstarget's mod(round(.), N) with 0 taken as N gives
+                // 1..N; one cell down, 0-based, that is 0..N-1. σ = ∞ is
+                // its uniform limit.
+                let axis = |rng: &mut Rng| {
+                    if sigma.is_infinite() {
+                        return rng::below(rng, *period as u32);
+                    }
+                    let k = libm::round(mu + sigma * rng::standard_normal(rng)).rem_euclid(*period);
+                    (if k == 0.0 { *period } else { k }) as u32 - 1
+                };
+                let x = axis(rng);
+                let y = axis(rng);
+                y * self.n + x
+            }
             Sampler::Alias(a) => a.sample(rng),
         }
     }
+}
+
+/// The mass and sampler of [`PriorSpec::Code`] on the n-torus.
+fn code_prior(n: u32, sigma: f64) -> Result<(Vec<f64>, Sampler), PriorError> {
+    if sigma.is_nan() || sigma < 0.0 {
+        return Err(PriorError::Sigma(sigma));
+    }
+    let period = n - 1;
+    let mu = period as f64 / 2.0;
+    // Mass of 0-based coordinate k: the code's coordinate k + 1, i.e. the
+    // class (k + 1) mod N of round(N/2 + σZ); the last one (n − 1) is never
+    // drawn.
+    let mut axis = vec![0.0; n as usize];
+    let uniform = sigma >= UNIFORM_SIGMA_WIDTHS * period as f64;
+    let mut centre = 0;
+    if sigma == 0.0 {
+        let k = libm::round(mu).rem_euclid(period as f64) as u32;
+        centre = (if k == 0 { period } else { k }) - 1;
+        axis[centre as usize] = 1.0;
+    } else if uniform {
+        axis[..period as usize].fill(1.0 / period as f64);
+    } else {
+        let w = wrapped_rounded_normal(period, mu, sigma);
+        for (k, a) in axis[..period as usize].iter_mut().enumerate() {
+            *a = w[(k + 1) % period as usize];
+        }
+    }
+    let mut m = Vec::with_capacity((n * n) as usize);
+    for y in 0..n as usize {
+        for x in 0..n as usize {
+            m.push(axis[x] * axis[y]);
+        }
+    }
+    let sampler = if sigma == 0.0 {
+        Sampler::Delta(centre * n + centre)
+    } else {
+        Sampler::Code {
+            mu,
+            sigma: if uniform { f64::INFINITY } else { sigma },
+            period: period as f64,
+        }
+    };
+    Ok((m, sampler))
 }
 
 fn delta_mass(cells: usize, c: u32) -> Vec<f64> {
@@ -429,6 +507,10 @@ pub(crate) fn assert_draws_follow(counts: &[u32], p: &[f64], z: f64) {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "prior_code_tests.rs"]
+mod code_tests;
 
 #[cfg(test)]
 mod tests {
