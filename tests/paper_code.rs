@@ -1,7 +1,7 @@
 //! The `code` MCTS variant and the `paper-code` preset: the bookkeeping of
-//! the authors' `MCTSgaussian.m`, and fidelity to the numbers their code
-//! gives under GNU Octave (issue 10: excess steps 7.95, 95% CI
-//! [5.35, 10.55], at the delta target; mean steps 222.9 at σ = 5).
+//! the authors' `MCTSgaussian.m` on the paper's N-torus. Fidelity to the
+//! code's own numbers (its (N+1)-lattice, `--prior code`) is
+//! `tests/fidelity.rs`.
 //!
 //! Runs natively (`cargo test --test paper_code`) and in Node.
 
@@ -73,12 +73,13 @@ fn a_rollout_that_detects_at_once_makes_its_move_win() {
 }
 
 #[wasm_bindgen_test(unsupported = test)]
-fn paper_code_lands_inside_the_authors_ci_at_the_delta_target() {
-    // The authors' code under Octave: excess steps 7.95, 95% CI
-    // [5.35, 10.55]. Our 100-trial mean has SE ≈ 0.7, so a correct variant
-    // lands inside with room. Counting distinct cells per loop instead of
+fn paper_code_keeps_its_measured_excess_at_the_delta_target() {
+    // The preset on the N-torus (N = 40): excess steps 7.51, SE 0.15, over
+    // 3000 trials (fidelity/README.md, `fidelity/regenerate.sh crate`). Our
+    // 100-trial mean has SE ≈ 0.7, so a correct variant lands within 3
+    // combined SEs, [5.4, 9.6]. Counting distinct cells per loop instead of
     // every rollout step (the `cells` variant's rule) gives 11.1 excess
-    // steps here and fails.
+    // steps here and fails; so does the code's own lattice (10.9).
     let cfg = Config {
         sigma: 0.0,
         seed: 2026,
@@ -93,9 +94,10 @@ fn paper_code_lands_inside_the_authors_ci_at_the_delta_target() {
         m.mean,
         m.se()
     );
+    let margin = 3.0 * (m.se().powi(2) + 0.15f64.powi(2)).sqrt();
     assert!(
-        (5.35..=10.55).contains(&m.mean),
-        "excess {:.2} is outside the authors' CI [5.35, 10.55]",
+        (m.mean - 7.51).abs() <= margin,
+        "excess {:.2} is more than {margin:.2} from the preset's 7.51",
         m.mean
     );
 }
