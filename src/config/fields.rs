@@ -117,7 +117,7 @@ pub static FIELDS: &[Field] = &[
             label: "Prior",
             kind: ParamKind::Choice(|| PriorKind::NAMES.to_vec()),
             default: Value::Name(Cow::Borrowed("gaussian")),
-            help: "target prior: gaussian (the paper's rounded, wrapped normal), delta (the centre), uniform, paint (a painted grid), or code (the authors' gausstarget on their (N+1)-lattice: with --preset paper-code and n = N+1 it reproduces MCTSgaussian.m at side N)",
+            help: "target prior: gaussian (the paper's rounded, wrapped normal), delta (the centre), uniform, paint (a painted grid), or code (the authors' gausstarget on their (N+1)-lattice: under the paper-code preset with n = N+1 it reproduces MCTSgaussian.m at side N)",
             aliases: &[],
             choice_labels: &[
                 "Gaussian",
