@@ -165,10 +165,14 @@ test('the page and the CLI give the same result, byte for byte, for any number o
     assert.match(svg, /^<svg xmlns="http:\/\/www.w3.org\/2000\/svg"/);
     assert.ok(svg.includes(result.experiment.title), 'the SVG has the title');
     assert.ok((await page.evaluate(() => window.torusTest.experiments.exported('png'))) > 2000, 'a PNG of the chart');
-    for (const mode of ['mean', 'excess', 'box']) {
+    for (const mode of ['mean', 'excess', 'box', 'paired']) {
       await page.selectOption('#exp-chart', mode);
       await page.waitForSelector(`#exp-figure[data-mode="${mode}"] svg`, { timeout: 10_000 });
     }
+    // The paired chart draws the engine's comparisons: its legend names each pair.
+    const pairedSvg = await page.evaluate(() => window.torusTest.experiments.exported('svg'));
+    const pair = `${result.paired[0].series} − ${result.paired[0].reference}`;
+    assert.ok(pairedSvg.includes(pair), `the paired chart's legend names ${pair}`);
     // The Download buttons save files named as the CLI names them.
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#exp-json')]);
     assert.equal(dl.suggestedFilename(), 'custom.json');

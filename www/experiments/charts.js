@@ -70,11 +70,12 @@ export function chartModes(result) {
   const e = result.experiment;
   const modes = e.kind === 'targets' ? ['hist', 'box', 'mean'] : ['box', 'mean'];
   if (e.kind === 'episodes' && e.metric !== 'excess' && result.points.some((p) => p.excess_mean !== undefined)) modes.push('excess');
+  if (result.paired?.length) modes.push('paired');
   const first = HEADER_MODES[e.chart];
   return first && modes.includes(first) ? [first, ...modes.filter((m) => m !== first)] : modes;
 }
 
-export const MODE_LABELS = { box: 'Box plots', mean: 'Means with 95% intervals', excess: 'Mean steps − optimal with 95% intervals', hist: 'Histograms of targets' };
+export const MODE_LABELS = { box: 'Box plots', mean: 'Means with 95% intervals', excess: 'Mean steps − optimal with 95% intervals', hist: 'Histograms of targets', paired: 'Paired differences with 95% intervals' };
 
 /** The x axis's name in a sentence: its parameter key (its label can be long). */
 export function xName(result) {
@@ -248,6 +249,68 @@ function excessPlot(Plot, result, width) {
   return meanPlot(Plot, result, width, { mean: 'excess_mean', lo: 'excess_mean_lo', hi: 'excess_mean_hi', label: 'steps − optimal steps', bounds: false });
 }
 
+/** The engine's paired comparisons as plot data: `s` names the pair, `p` the series' point. */
+function pairedData(result) {
+  return (result.paired ?? [])
+    .filter((c) => Number.isFinite(c.difference?.estimate))
+    .map((c) => ({
+      s: `${c.series} − ${c.reference}`,
+      x: c.x,
+      xs: String(c.x),
+      d: c.difference.estimate,
+      lo: c.difference.lo,
+      hi: c.difference.hi,
+      n: c.n,
+      wins: c.wins,
+      ties: c.ties,
+      losses: c.losses,
+      p: result.points[c.point],
+    }));
+}
+
+/** The tooltip of a paired comparison. */
+function pairedSummary(result, d) {
+  const at = result.experiment.x.values.length > 1 ? ` at ${xName(result)} = ${d.xs}` : '';
+  return `${d.s}${at}\npaired difference ${fmt(d.d)} [${fmt(d.lo)}, ${fmt(d.hi)}] over ${d.n} trials\nthe first took fewer in ${d.wins}, as many in ${d.ties}, more in ${d.losses}\nclick: open the first in the live view`;
+}
+
+/** Each pair's mean difference (series − reference, trial by trial) with its interval, against 0. */
+function pairedPlot(Plot, result, width) {
+  const e = result.experiment;
+  const data = pairedData(result);
+  const pairs = [...new Set(data.map((d) => d.s))];
+  const { single } = layout(result);
+  const numeric = e.x.numeric && !single;
+  const xv = single ? (d) => d.s : numeric ? (d) => Number(d.x) : (d) => d.xs;
+  const marks = [Plot.ruleY([0], { stroke: BOUND_COLOR, strokeWidth: 1.5, strokeDasharray: '4,2' })];
+  if (!single) {
+    pairs.forEach((label, i) => {
+      const dash = styleOf(i).dash;
+      marks.push(Plot.lineY(data.filter((d) => d.s === label), { x: xv, y: 'd', stroke: 's', strokeWidth: 1.5, ...(dash.length ? { strokeDasharray: dash.join(',') } : {}) }));
+    });
+  }
+  marks.push(Plot.ruleX(data.filter((d) => Number.isFinite(d.lo)), { x: xv, y1: 'lo', y2: 'hi', stroke: 's', strokeWidth: 2 }));
+  marks.push(Plot.dot(data, { x: xv, y: 'd', fill: 's', stroke: 's', symbol: 's', r: 3.5 }));
+  marks.push(Plot.tip(data, Plot.pointer({ x: xv, y: 'd', title: (d) => pairedSummary(result, d), fontSize: 11 })));
+  let x;
+  if (single) x = { type: 'band', domain: pairs, label: null, padding: 0.4 };
+  else if (numeric) x = { label: e.x.label, type: e.x.log ? 'log' : 'linear', grid: true };
+  else x = { label: e.x.label, type: 'point', domain: e.x.values, padding: 0.3 };
+  return Plot.plot({
+    width,
+    height: 380,
+    marginLeft: 56,
+    marginRight: 24,
+    marginBottom: 40,
+    style: PAPER,
+    className: CLASS,
+    x,
+    y: { label: `${e.y.label}: first − second, trial by trial (0: no difference)`, grid: true, nice: true },
+    ...seriesScales(pairs),
+    marks,
+  });
+}
+
 /** Side of a point's square histogram (its config's n, else √length). */
 function histSide(p) {
   const len = p.histogram.length;
@@ -314,7 +377,7 @@ function histPlot(Plot, result, width) {
 export async function drawExperiment(el, result, mode, { onPoint = () => {} } = {}) {
   const Plot = await loadPlot();
   const width = Math.max(360, Math.floor(el.clientWidth || 800));
-  const draw = { box: boxPlot, mean: meanPlot, excess: excessPlot, hist: histPlot }[mode];
+  const draw = { box: boxPlot, mean: meanPlot, excess: excessPlot, hist: histPlot, paired: pairedPlot }[mode];
   if (!draw) throw new Error(`unknown chart ${JSON.stringify(mode)}`);
   const fig = draw(Plot, result, width);
   // Plot puts <style> elements in what it draws; the page's CSP (no inline
