@@ -211,6 +211,9 @@ export class TreePanel {
       if (this.view.hover >= 0) this.hoverNode(this.view.hover);
       else setText('tree-info', answer.tree.note);
     } catch (err) {
+      // A trapped engine is the controller's to report (its message stays);
+      // the tree waits for the restart.
+      if (err.trap || this.controller.state === 'error') return;
       // A focus on a node that went with a real move: say so, show the whole tree.
       showMessage(`Tree view: ${err.message}. Showing the whole tree.`);
       this.showFocus('all');
