@@ -10,7 +10,7 @@ import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 import { readUrl, raceOptions, opponentConfig } from '../../www/shared/url-state.js';
-import { LESSONS, lessonById } from '../../www/live/lessons.js';
+import { LESSONS, lessonById, lessonSteps, lessonAt, lessonValue } from '../../www/live/lessons.js';
 
 const PKG = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../../www/pkg');
 const engine = await import(path.join(PKG, 'torus_search.js'));
@@ -18,10 +18,10 @@ engine.initSync({ module: readFileSync(path.join(PKG, 'torus_search_bg.wasm')) }
 const schema = engine.schema();
 const races = raceOptions(engine, schema);
 
-/** The lesson's configs as the page runs them: the main run, and the opponent (or null). */
-function configs(id) {
-  const { config, view, messages } = readUrl(engine, schema, lessonById(id).query, races);
-  assert.deepEqual(messages, [], `${id}: its link reads cleanly`);
+/** The configs of the lesson's step (from 0) as the page runs them: the main run, and the opponent (or null). */
+function configs(id, step = 0) {
+  const { config, view, messages } = readUrl(engine, schema, lessonSteps(lessonById(id))[step].query, races);
+  assert.deepEqual(messages, [], `${id} step ${step + 1}: its link reads cleanly`);
   const race = races.find((r) => r.id === view.race);
   const opponent = race?.pairs.length || view.vs ? opponentConfig(engine, config, race?.pairs ?? [], view.vs) : null;
   return { main: config, opponent, view };
@@ -41,8 +41,23 @@ test('every lesson has a title, two or three sentences, what to look at and a cl
     const sentences = l.text.split(/(?<=[.!?])\s+/).length;
     assert.ok(sentences >= 2 && sentences <= 3, `${l.id}: ${sentences} sentences`);
     assert.ok(l.look && l.claim && l.title, l.id);
-    configs(l.id);
+    lessonSteps(l).forEach((st, i) => {
+      configs(l.id, i);
+      assert.ok(lessonSteps(l).length === 1 || st.label, `${l.id} step ${i + 1} has a label`);
+      assert.deepEqual(lessonAt(lessonValue(l, i)), { lesson: l, step: i });
+    });
   }
+});
+
+test('a link naming a lesson step that does not exist gets a message naming it, and no lesson', () => {
+  for (const bad of ['theorem1.3', 'theorem1.0', 'phases.2', 'theorem1.x', 'nope']) {
+    const { view, messages } = readUrl(engine, schema, `prior=delta&loops=7&lesson=${bad}`, races);
+    assert.equal(view.lesson, '', bad);
+    assert.equal(messages.length, 1, bad);
+    assert.match(messages[0], new RegExp(`^Invalid lesson="${bad.replace('.', '\\.')}": allowed .*theorem1\\.1 to theorem1\\.2`), bad);
+  }
+  const { config, view, messages } = readUrl(engine, schema, 'prior=delta&loops=7&lesson=theorem1.2', races);
+  assert.deepEqual([messages, view.lesson, config.loops], [[], 'theorem1.2', 7], 'a good step reads, and the link’s run is its own');
 });
 
 test('lesson phases: every loop runs the four phases in order and adds one visit to the root', () => {
@@ -73,16 +88,30 @@ test('lesson uct-c: the most picked move takes a larger share of a decision with
   assert.ok(d.mean - 2 * d.se > 0, `share difference ${d.mean.toFixed(3)} ± ${d.se.toFixed(3)} (SE)`);
 });
 
-test('lesson theorem1: at a delta target, L = 100 takes fewer steps than L = 10 over paired trials', () => {
-  const { main, opponent } = configs('theorem1');
-  assert.deepEqual([main.prior, main.loops, opponent.loops], ['delta', 10, 100]);
+/** Paired trials of the step's two sides, seeds 0..trials−1, summarised by the engine (A − B steps). */
+function paired(main, opponent, trials) {
   const flat = [];
-  for (let i = 0; i < 30; i++) flat.push(...engine.runPairedTrial(main, opponent, i));
+  for (let i = 0; i < trials; i++) flat.push(...engine.runPairedTrial(main, opponent, i));
   const p = engine.summarizePaired(Float64Array.from(flat));
-  assert.equal(p.found_a + p.found_b, 60, 'every trial found the target');
-  // A − B steps: L = 10 takes more, the interval wholly above 0.
-  assert.ok(p.difference.lo > 0, `A − B = ${p.difference.estimate} [${p.difference.lo}, ${p.difference.hi}]`);
-  assert.ok(p.a_wins < p.b_wins, `wins ${p.a_wins} / ${p.ties} / ${p.b_wins}`);
+  assert.equal(p.found_a + p.found_b, 2 * trials, 'every trial found the target');
+  return p;
+}
+
+// The full statistical claim (100 trials a point, native) is tests/theorems.rs
+// theorem1_default_searcher_excess_falls_with_loops_at_a_delta_target; here
+// each step's race on its own targets: the side with more loops takes fewer
+// steps, the paired interval wholly above 0 (16 trials at L = 1000 take about 5 s).
+test('lesson theorem1: at a delta target, L = 100 takes fewer steps than L = 10, and L = 1000 fewer than L = 100', () => {
+  const expected = [[10, 100, 30], [100, 1000, 16]];
+  assert.equal(lessonSteps(lessonById('theorem1')).length, expected.length);
+  for (const [step, [la, lb, trials]] of expected.entries()) {
+    const { main, opponent } = configs('theorem1', step);
+    assert.deepEqual([main.prior, main.searcher, main.loops, opponent.loops], ['delta', engine.parseParams([]).config.searcher, la, lb]);
+    assert.deepEqual({ ...main, loops: lb }, opponent, 'the sides differ only in L');
+    const p = paired(main, opponent, trials);
+    const d = `L = ${la} − L = ${lb}: ${p.difference.estimate} [${p.difference.lo}, ${p.difference.hi}], wins ${p.a_wins} / ${p.ties} / ${p.b_wins}`;
+    assert.ok(p.difference.lo > 0 && p.a_wins < p.b_wins, d);
+  }
 });
 
 test('lesson theorem2: on a uniform target MCTS revisits under 5% of its first 60 moves, the random walk over 25%', () => {
@@ -123,6 +152,12 @@ test('a lesson opens from beside the playback bar: its runs, its card, and a lin
     await page.goto(`${server.url}${link}&autoplay=0`);
     await page.waitForFunction(() => window.torusTest?.runs().length === 2, null, { timeout: 30_000 });
     assert.ok(await page.locator('#lesson-card').isVisible());
+    assert.ok(await page.locator('#lesson-steps').isHidden(), 'a lesson without steps shows no step buttons');
+    await page.selectOption('#lesson', 'theorem1');
+    await page.locator('#lesson-steps button', { hasText: 'L = 100 vs 1000' }).click();
+    await page.waitForFunction(() => window.torusTest.runs().map((r) => r.config.loops).join() === '100,1000', null, { timeout: 30_000 });
+    await page.waitForFunction(() => /lesson=theorem1\.2/.test(location.search), null, { timeout: 5_000 });
+    assert.equal(await page.locator('#lesson-steps button[aria-pressed="true"]').textContent(), '2. L = 100 vs 1000');
     await page.click('#lesson-close');
     assert.ok(await page.locator('#lesson-card').isHidden());
     await page.waitForFunction(() => !/lesson=/.test(location.search), null, { timeout: 5_000 });

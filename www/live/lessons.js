@@ -1,6 +1,6 @@
 // The lessons: each a link's query (engine parameters and the page's view:
-// speed, layers, race), a few plain sentences, what to look at, and the
-// claim it shows. tests/e2e/lessons.test.mjs checks every claim with the
+// speed, layers, race), or a few steps each with its query, a few plain
+// sentences, what to look at, and the claim it shows. tests/e2e/lessons.test.mjs checks every claim with the
 // engine on the lesson's own settings. Pure data: no DOM.
 
 export const LESSONS = [
@@ -23,10 +23,13 @@ export const LESSONS = [
   {
     id: 'theorem1',
     title: 'Theorem 1: more loops, a shorter path',
-    query: 'prior=delta&seed=5&loops=10&vs=loops=100&speed=20&show=visits,path,grid,arrows,rollouts,practice',
-    text: 'When the target’s cell is known (a delta prior), the paper proves that MCTS’s move tends to the optimal one as the loops per move L grow. Here L = 10 races L = 100 from the same start.',
+    steps: [
+      { label: 'L = 10 vs 100', query: 'prior=delta&seed=5&loops=10&vs=loops=100&speed=20&show=visits,path,grid,arrows,rollouts,practice' },
+      { label: 'L = 100 vs 1000', query: 'prior=delta&seed=5&loops=100&vs=loops=1000&speed=100&show=visits,path,grid,arrows,rollouts,practice' },
+    ],
+    text: 'When the target’s cell is known (a delta prior), the paper proves that MCTS’s move tends to the optimal one as the loops per move L grow. Step 1 races L = 10 against L = 100 from the same start; step 2 races L = 100 against L = 1000.',
     look: 'Watch the two paths and the scoreboard: the path with more loops heads straighter for the target. Then run a batch: it compares both on the same trials.',
-    claim: 'Over paired trials, L = 100 takes fewer steps than L = 10 (its excess over the shortest path is smaller).',
+    claim: 'On the same targets, the steps over the shortest path fall from L = 10 to L = 100 to L = 1000.',
   },
   {
     id: 'theorem2',
@@ -40,3 +43,21 @@ export const LESSONS = [
 
 /** The lesson with id `id`, or undefined. */
 export const lessonById = (id) => LESSONS.find((l) => l.id === id);
+
+/** A lesson's steps, each `{ label, query }` (one, its own query, for a lesson without steps). */
+export const lessonSteps = (lesson) => lesson.steps ?? [{ label: '', query: lesson.query }];
+
+/**
+ * A link's `lesson` value, `ID` or `ID.STEP` (steps count from 1), as
+ * `{ lesson, step }` (step from 0), or undefined if it names no lesson or no step of it.
+ */
+export function lessonAt(value) {
+  const m = /^([a-z0-9-]+)(?:\.(\d{1,3}))?$/.exec(String(value ?? ''));
+  const lesson = m && lessonById(m[1]);
+  if (!lesson) return undefined;
+  const step = m[2] === undefined ? 0 : Number(m[2]) - 1;
+  return step >= 0 && step < lessonSteps(lesson).length ? { lesson, step } : undefined;
+}
+
+/** The link's `lesson` value for step `step` (from 0) of `lesson`. */
+export const lessonValue = (lesson, step) => (step > 0 ? `${lesson.id}.${step + 1}` : lesson.id);

@@ -3,7 +3,7 @@
 
 import { $, setText, fillSelect } from '../shared/ui.js';
 import { readUrl } from '../shared/url-state.js';
-import { LESSONS, lessonById } from './lessons.js';
+import { LESSONS, lessonById, lessonAt, lessonSteps, lessonValue } from './lessons.js';
 import { reducedMotion } from './motion.js';
 
 export const PRESETS = {
@@ -15,8 +15,12 @@ export const PRESETS = {
   },
 };
 
-/** Shows lesson `lesson`'s card beside the playback bar (undefined: hides it). */
-function showLesson(lesson) {
+/**
+ * Shows the card of `at` (`{ lesson, step }`; undefined hides it) beside the
+ * playback bar, with a button per step when the lesson has steps (`open(step)` opens one).
+ */
+function showLesson(at, open) {
+  const lesson = at?.lesson;
   $('lesson-card').hidden = !lesson;
   $('lesson').value = lesson?.id ?? '';
   if (!lesson) return;
@@ -24,28 +28,41 @@ function showLesson(lesson) {
   setText('lesson-text', lesson.text);
   setText('lesson-look', lesson.look);
   setText('lesson-claim', lesson.claim);
+  const steps = lessonSteps(lesson);
+  const bar = $('lesson-steps');
+  bar.hidden = steps.length < 2;
+  bar.replaceChildren(...(steps.length < 2 ? [] : steps.map((st, i) => {
+    const b = document.createElement('button');
+    b.type = 'button';
+    b.textContent = `${i + 1}. ${st.label}`;
+    b.setAttribute('aria-pressed', String(i === at.step));
+    b.addEventListener('click', () => open({ lesson, step: i }));
+    return b;
+  })));
 }
 
 /**
- * Wires the lessons: the list beside the playback bar opens one (its
- * settings, layers and race through the one path for changes, and its
- * card); a link's `lesson` shows its card.
+ * Wires the lessons: the list beside the playback bar opens one, a step
+ * button one of its steps (its settings, layers and race through the one
+ * path for changes, and its card); a link's `lesson` shows its card.
  */
 function bindLessons({ engine, schema, live }) {
   fillSelect($('lesson'), [['', 'Lessons…'], ...LESSONS.map((l) => [l.id, l.title])]);
   const defaults = readUrl(engine, schema, '', live.races).view;
+  const open = (at) => {
+    const { config, view, messages } = readUrl(engine, schema, lessonSteps(at.lesson)[at.step].query, live.races);
+    showLesson(at, open);
+    live.change({ config, view: { ...defaults, ...view, lesson: lessonValue(at.lesson, at.step) }, autoplay: view.autoplay && !reducedMotion(), note: messages.join('\n') });
+  };
   $('lesson').addEventListener('change', (e) => {
     const lesson = lessonById(e.target.value);
-    if (!lesson) return;
-    const { config, view, messages } = readUrl(engine, schema, lesson.query, live.races);
-    showLesson(lesson);
-    live.change({ config, view: { ...defaults, ...view, lesson: lesson.id }, autoplay: view.autoplay && !reducedMotion(), note: messages.join('\n') });
+    if (lesson) open({ lesson, step: 0 });
   });
   $('lesson-close').addEventListener('click', () => {
-    showLesson(undefined);
+    showLesson(undefined, open);
     live.change({ view: { lesson: '' }, restart: false });
   });
-  showLesson(lessonById(live.view.lesson));
+  showLesson(lessonAt(live.view.lesson), open);
 }
 
 /** Wires the Teaching view and Default demo buttons: each starts its preset, playing; and the lessons. */

@@ -14,7 +14,7 @@ function shown(raw) {
 /** Speeds of one phase every so many seconds (the worker steps a phase when that long has passed). */
 export const PHASE_SPEEDS = ['2s', '1s', '0.5s'];
 
-import { LESSONS } from '../live/lessons.js';
+import { LESSONS, lessonAt, lessonSteps } from '../live/lessons.js';
 
 const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
@@ -78,8 +78,8 @@ export function viewSpecs(races) {
     },
     lesson: {
       def: '',
-      help: `one of ${LESSONS.map((l) => l.id).join(', ')}, or empty`,
-      parse: (s) => (s === '' || LESSONS.some((l) => l.id === s) ? s : undefined),
+      help: `one of ${LESSONS.map((l) => (l.steps ? `${l.id} (or ${l.id}.1 to ${l.id}.${lessonSteps(l).length}, its steps)` : l.id)).join(', ')}, or empty`,
+      parse: (s) => (s === '' || lessonAt(s) ? s : undefined),
       text: String,
     },
     race: {
