@@ -132,6 +132,31 @@ test('lesson theorem2: on a uniform target MCTS revisits under 5% of its first 6
   assert.ok(r.mean - 2 * r.se > 0.25, `RW ${r.mean.toFixed(3)} ± ${r.se.toFixed(3)}`);
 });
 
+// EXPERIMENTS.md (delta, loops): under paper-code the Lévy rollouts took
+// more steps at every L; the paper's claim does not reproduce with our Lévy law.
+test('lesson levy: at a delta target under paper-code, Lévy rollouts take more steps than random-walk rollouts (paired)', () => {
+  const { main, opponent } = configs('levy');
+  assert.deepEqual([main.prior, main.rollout, opponent.rollout], ['delta', 'rw', 'levy']);
+  assert.deepEqual({ ...main, rollout: 'levy' }, opponent, 'the sides differ only in the rollout');
+  const p = paired(main, opponent, 20);
+  // A − B steps: the random-walk rollouts take fewer, the interval wholly below 0.
+  assert.ok(p.difference.hi < 0 && p.a_wins > p.b_wins, `rw − levy = ${p.difference.estimate} [${p.difference.lo}, ${p.difference.hi}], wins ${p.a_wins} / ${p.ties} / ${p.b_wins}`);
+});
+
+test('lesson belief: the belief MCTS takes fewer steps than the paper’s MCTS, closer to the bound (paired)', () => {
+  const { main, opponent } = configs('belief');
+  assert.deepEqual([main.prior, main.sigma, opponent.variant], ['gaussian', 5, 'pomcp']);
+  assert.notEqual(main.variant, 'pomcp');
+  const race = new engine.Race([main, opponent]);
+  const bounds = race.describe().map((d) => d.lower_bound);
+  race.free();
+  assert.equal(bounds[0], bounds[1], 'one bound: the same prior');
+  const p = paired(main, opponent, 16);
+  const d = `paper − belief = ${p.difference.estimate} [${p.difference.lo}, ${p.difference.hi}], wins ${p.a_wins} / ${p.ties} / ${p.b_wins}; means ${p.mean_a}, ${p.mean_b}, bound ${bounds[0].toFixed(1)}`;
+  assert.ok(p.difference.lo > 0 && p.a_wins < p.b_wins, d);
+  assert.ok(bounds[0] < p.mean_b && p.mean_b < p.mean_a, d);
+});
+
 test('a lesson opens from beside the playback bar: its runs, its card, and a link that holds it', { timeout: 90_000 }, async () => {
   const { ROOT, launchBrowser, openPage, startServer, describeProblems } = await import('./harness.mjs');
   const server = await startServer(ROOT);

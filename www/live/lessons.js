@@ -39,6 +39,22 @@ export const LESSONS = [
     look: 'Compare the two paths and the Revisits count under This run (board A) with the scoreboard: MCTS almost never revisits a cell.',
     claim: 'Over their first 60 moves, MCTS revisits under 5% of its moves; the random walk over 25%.',
   },
+  {
+    id: 'levy',
+    title: 'Random-walk against Lévy rollouts',
+    query: 'preset=paper-code&prior=delta&seed=5&loops=100&vs=rollout=levy&speed=20&show=visits,path,grid,arrows,rollouts,practice',
+    text: 'A rollout can be a random walk (one cell a step) or a Lévy flight (straight flights of heavy-tailed lengths). The paper reports that Lévy rollouts search better; with our Lévy law, on a known target (the paper-code reading), they do not.',
+    look: 'Board A rolls out random walks, board B Lévy flights, on the same target. Compare the rollout trails and the scoreboard, then run a batch for the paired difference.',
+    claim: 'On the same targets, MCTS with Lévy rollouts takes more steps than with random-walk rollouts.',
+  },
+  {
+    id: 'belief',
+    title: 'The paper’s MCTS, the belief MCTS and the bound',
+    query: 'preset=paper-code&sigma=5&seed=3&loops=100&vs=variant=pomcp&speed=20&show=posterior,path,grid,arrows',
+    text: 'The paper’s MCTS keeps one table of counts per cell for the whole search. The belief MCTS (pomcp) plans each move afresh from the belief, with searched cells removed. No searcher can average fewer steps than the bound the page states at the end.',
+    look: 'Board A is the paper’s MCTS, board B the belief MCTS, on the same target. When both have found it, compare their steps with the Bound on mean steps under This run; a batch compares them on many targets.',
+    claim: 'On the same targets, the belief MCTS takes fewer steps than the paper’s MCTS: its mean is closer to the bound.',
+  },
 ];
 
 /** The lesson with id `id`, or undefined. */
