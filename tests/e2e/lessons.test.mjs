@@ -154,7 +154,8 @@ test('lesson belief: the belief MCTS takes fewer steps than the paper’s MCTS, 
   const p = paired(main, opponent, 16);
   const d = `paper − belief = ${p.difference.estimate} [${p.difference.lo}, ${p.difference.hi}], wins ${p.a_wins} / ${p.ties} / ${p.b_wins}; means ${p.mean_a}, ${p.mean_b}, bound ${bounds[0].toFixed(1)}`;
   assert.ok(p.difference.lo > 0 && p.a_wins < p.b_wins, d);
-  assert.ok(bounds[0] < p.mean_b && p.mean_b < p.mean_a, d);
+  // The bound holds for the mean over the prior, so 16 targets may average below it.
+  assert.ok(Math.abs(p.mean_b - bounds[0]) < p.mean_a - bounds[0], d);
 });
 
 test('a lesson opens from beside the playback bar: its runs, its card, and a link that holds it', { timeout: 90_000 }, async () => {

@@ -50,7 +50,7 @@ export const LESSONS = [
   {
     id: 'belief',
     title: 'The paper’s MCTS, the belief MCTS and the bound',
-    query: 'preset=paper-code&sigma=5&seed=3&loops=100&vs=variant=pomcp&speed=20&show=posterior,path,grid,arrows',
+    query: 'preset=paper-code&sigma=5&seed=5&loops=100&vs=variant=pomcp&speed=20&show=posterior,path,grid,arrows',
     text: 'The paper’s MCTS keeps one table of counts per cell for the whole search. The belief MCTS (pomcp) plans each move afresh from the belief, with searched cells removed. No searcher can average fewer steps than the bound the page states at the end.',
     look: 'Board A is the paper’s MCTS, board B the belief MCTS, on the same target. When both have found it, compare their steps with the Bound on mean steps under This run; a batch compares them on many targets.',
     claim: 'On the same targets, the belief MCTS takes fewer steps than the paper’s MCTS: its mean is closer to the bound.',
