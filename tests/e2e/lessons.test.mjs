@@ -187,6 +187,12 @@ test('a lesson opens from beside the playback bar: its runs, its card, and a lin
     await page.click('#lesson-close');
     assert.ok(await page.locator('#lesson-card').isHidden());
     await page.waitForFunction(() => !/lesson=/.test(location.search), null, { timeout: 5_000 });
+    // A link with a bad step: a message naming it and the steps there are; the link's own run, no lesson.
+    await page.goto(`${server.url}?prior=delta&loops=7&lesson=theorem1.9&autoplay=0`);
+    await page.waitForFunction(() => window.torusTest?.runs().length === 1, null, { timeout: 30_000 });
+    assert.match(await page.locator('#message').textContent(), /Invalid lesson="theorem1\.9": allowed .*theorem1\.1 to theorem1\.2/);
+    assert.deepEqual(await page.evaluate(() => window.torusTest.runs().map((r) => [r.config.prior, r.config.loops])), [['delta', 7]]);
+    assert.ok(await page.locator('#lesson-card').isHidden());
     assert.equal(describeProblems(report), '');
   } finally {
     await browser.close();
