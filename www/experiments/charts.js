@@ -191,6 +191,16 @@ function boxPlot(Plot, result, width) {
  * mean_lo, mean_hi; or the excess ones). Against a numeric x, lines with
  * interval bands; otherwise dots with interval bars.
  */
+/** The frame the means and the paired differences share. */
+const MEANS_FRAME = { height: 380, marginLeft: 56, marginRight: 24, marginBottom: 40, style: PAPER, className: CLASS };
+
+/** Their x scale: the labels as bands (one x value), else the x values, numeric or as points. */
+function xScale(e, single, numeric, bands) {
+  if (single) return { type: 'band', domain: bands, label: null, padding: 0.4 };
+  if (numeric) return { label: e.x.label, type: e.x.log ? 'log' : 'linear', grid: true };
+  return { label: e.x.label, type: 'point', domain: e.x.values, padding: 0.3 };
+}
+
 function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'mean_lo', hi: 'mean_hi', label: result.experiment.y.label, bounds: true }) {
   const e = result.experiment;
   const data = pointData(result);
@@ -225,19 +235,10 @@ function meanPlot(Plot, result, width, f = { mean: 'mean', lo: 'mean_lo', hi: 'm
     marks.push(Plot.text([refs[0]], { x: rx, y: y('y'), text: (d) => d.label, dx: 8, dy: -10, textAnchor: 'start', fontSize: 10, fill: REFERENCE_COLOR }));
   }
   marks.push(Plot.tip(data, Plot.pointer({ x: xv, y: y(f.mean), title: (d) => pointSummary(result, d), fontSize: 11 })));
-  let x;
-  if (single) x = { type: 'band', domain: series, label: null, padding: 0.4 };
-  else if (numeric) x = { label: e.x.label, type: e.x.log ? 'log' : 'linear', grid: true };
-  else x = { label: e.x.label, type: 'point', domain: e.x.values, padding: 0.3 };
   return Plot.plot({
+    ...MEANS_FRAME,
     width,
-    height: 380,
-    marginLeft: 56,
-    marginRight: 24,
-    marginBottom: 40,
-    style: PAPER,
-    className: CLASS,
-    x,
+    x: xScale(e, single, numeric, series),
     y: { label: f.label, type: log ? 'log' : 'linear', grid: true, nice: true },
     ...seriesScales(series),
     marks,
@@ -292,19 +293,10 @@ function pairedPlot(Plot, result, width) {
   marks.push(Plot.ruleX(data.filter((d) => Number.isFinite(d.lo)), { x: xv, y1: 'lo', y2: 'hi', stroke: 's', strokeWidth: 2 }));
   marks.push(Plot.dot(data, { x: xv, y: 'd', fill: 's', stroke: 's', symbol: 's', r: 3.5 }));
   marks.push(Plot.tip(data, Plot.pointer({ x: xv, y: 'd', title: (d) => pairedSummary(result, d), fontSize: 11 })));
-  let x;
-  if (single) x = { type: 'band', domain: pairs, label: null, padding: 0.4 };
-  else if (numeric) x = { label: e.x.label, type: e.x.log ? 'log' : 'linear', grid: true };
-  else x = { label: e.x.label, type: 'point', domain: e.x.values, padding: 0.3 };
   return Plot.plot({
+    ...MEANS_FRAME,
     width,
-    height: 380,
-    marginLeft: 56,
-    marginRight: 24,
-    marginBottom: 40,
-    style: PAPER,
-    className: CLASS,
-    x,
+    x: xScale(e, single, numeric, pairs),
     y: { label: `${e.y.label}: first − second, trial by trial (0: no difference)`, grid: true, nice: true },
     ...seriesScales(pairs),
     marks,
