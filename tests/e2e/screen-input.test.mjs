@@ -133,7 +133,10 @@ test('reduced motion: no autoplay, no frame drawn while idle, no glide; the boar
     assert.deepEqual(await page.evaluate(() => window.torusTest.frameLog()), [], 'no animation frame drawn while idle');
     const still = await afterStep(page);
     assert.ok(moving.between >= 1, `the searcher glides between cells without reduced motion (${JSON.stringify(moving)})`);
-    assert.ok(still.between === 0 && still.frames <= 3, `with reduced motion it jumps, in at most 3 frames (${JSON.stringify(still)})`);
+    // Each step draws a frame, and a busy machine may add one or two while a layer
+    // finishes in slices; a glide or a fading trail would draw one per display frame
+    // for 60–400 ms.
+    assert.ok(still.between === 0 && still.frames <= 6, `with reduced motion it jumps, in at most 6 frames (${JSON.stringify(still)})`);
     assert.equal(await page.getAttribute('#view-0', 'role'), 'img');
     const described = await page.getAttribute('#view-0', 'aria-describedby');
     assert.match(await page.locator(`#${described}`).textContent(), /^Searcher at \(\d+, \d+\) after 2 steps; \d+\.\d% of the prior searched\.$/);
