@@ -18,6 +18,11 @@ ifneq ($(filter true 1,$(CI)),)
 export CARGO_INCREMENTAL := 0
 endif
 WASM := --target wasm32-unknown-unknown
+# The test targets that hold wasm tests: a test binary without any would still
+# be built for wasm32 and handed to the runner (the library's unit tests alone
+# cost a second optimised build of the crate).
+WASM_TESTS = $(shell { grep -rlq wasm_bindgen_test src && echo --lib; \
+	grep -rl wasm_bindgen_test tests --include='*.rs' | sed -E 's#^tests/##; s#[/.].*##; s#^#--test #'; } | sort -u)
 # Trials per point of sigma-sweep in the experiments benchmark. The issue's
 # figure is at 100 (`make bench BENCH_EXP_TRIALS=100`): hours on 2 cores, as
 # trapped MCTS episodes run to the step cap of 10 000.
@@ -91,10 +96,10 @@ test-native:
 	$(call section,cargo test (native))
 	cargo test $(LOCKED)
 
-# --tests: lib, bin and tests/*.rs; doc tests run natively above.
+# Only the targets with wasm tests (WASM_TESTS); doc tests run natively above.
 test-wasm:
 	$(call section,cargo test (wasm32: Node.js and headless Chromium))
-	cargo test $(LOCKED) $(WASM) --tests
+	cargo test $(LOCKED) $(WASM) $(WASM_TESTS)
 
 # In `make test`, the page's release build (scripts/build.sh: mostly one core,
 # LTO into one codegen unit) runs while the wasm tests run (mostly waiting on
@@ -102,10 +107,10 @@ test-wasm:
 # release build directories apart, so neither waits for the other.
 _test-wasm-and-build:
 	$(call section,cargo test (wasm32: Node.js and headless Chromium; the page's release build alongside))
-	cargo test $(LOCKED) $(WASM) --tests --no-run
+	cargo test $(LOCKED) $(WASM) $(WASM_TESTS) --no-run
 	@mkdir -p target; scripts/build.sh > target/build.log 2>&1 & build=$$!; \
 	  test_rc=0; build_rc=0; \
-	  cargo test $(LOCKED) $(WASM) --tests || test_rc=$$?; \
+	  cargo test $(LOCKED) $(WASM) $(WASM_TESTS) || test_rc=$$?; \
 	  wait $$build || build_rc=$$?; \
 	  printf '\n==== %s ====\n' "build wasm package (ran alongside the wasm tests)"; \
 	  cat target/build.log; \
@@ -127,8 +132,8 @@ soak: build setup-browser
 fuzz: build
 	$(call section,property tests, 100000 cases per property (tests/e2e/properties.test.mjs))
 	FC_RUNS=100000 FC_SEED=$$(date +%s) node --test tests/e2e/properties.test.mjs
-	$(call section,CLI property test, 100000 argument vectors (tests/cli_properties.rs))
-	CLI_CASES=100000 cargo test $(LOCKED) --release --test cli_properties -- --nocapture
+	$(call section,CLI property test, 100000 argument vectors (tests/suite/cli_properties.rs))
+	CLI_CASES=100000 cargo test $(LOCKED) --release --test suite cli_properties:: -- --nocapture
 
 bench: setup
 	$(call section,cargo bench)

@@ -2,10 +2,10 @@
 //! written from reading it, that draws GNU Octave's random numbers exactly:
 //! with the seeds of `code_trials.m` it gives the same step count, optimum
 //! and target as the script under Octave, trial for trial
-//! (`tests/fidelity.rs` checks every recorded Octave trial).
+//! (`tests/suite/fidelity.rs` checks every recorded Octave trial).
 //!
 //! A module, not a crate: `examples/fidelity.rs` (its `mirror` command) and
-//! `tests/fidelity.rs` include it by path.
+//! `tests/suite/fidelity.rs` include it by path.
 //!
 //! [`Switches`] change one behaviour of the code at a time, to find which
 //! one the crate's `paper-code` preset does differently.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerate every named experiment's files into docs/figures/ (json, csv,
 # svg, png, each with its provenance) at trial counts that fit in `make
-# figures` on a 2-core machine. tests/committed_results.rs checks that every
+# figures` on a 2-core machine. tests/suite/committed_results.rs checks that every
 # committed result reloads with the current build: when a change makes them
 # stale, this script is how they are made again.
 # Usage: scripts/figures.sh [NAME ...]   (default: all of them)

@@ -11,7 +11,7 @@
 #
 # TRIALS defaults to 1000, SEED to 3; SEARCHERS are labels from the list
 # below (default: all). `make test` does not run it: the full check takes
-# about an hour on 2 cores (tests/trap.rs is the reduced version).
+# about an hour on 2 cores (tests/suite/trap.rs is the reduced version).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 TRIALS=${1:-1000}

@@ -3,7 +3,7 @@
 //! The core (everything except [`wasm`]) is plain Rust with no browser
 //! dependency. A run is a pure function of a [`config::Config`] (which
 //! holds the seed) on every platform. The modules form layers that only
-//! point down (`docs/ARCHITECTURE.md`; `tests/layers.rs` checks it):
+//! point down (`docs/ARCHITECTURE.md`; `tests/suite/layers.rs` checks it):
 
 pub mod game;
 

@@ -279,7 +279,7 @@ mod tests {
         ys.swap(0, 1);
         assert_ne!(seed_of(&[&xs]), seed_of(&[&ys]));
         assert_ne!(bca_mean(&xs).lo, bca_mean(&ys).lo);
-        // tests/determinism.rs pins the bits natively and in wasm.
+        // tests/suite/determinism.rs pins the bits natively and in wasm.
     }
 
     #[test]

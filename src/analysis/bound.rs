@@ -37,7 +37,7 @@
 //! per cell added. It allocates its buffers once, before the sum. At
 //! N = 256 with a uniform prior (65 536 cells, 21 844 moves) it took 19 ms
 //! natively in a release build, and 0.32 s at N = 1024 (the ignored
-//! `bound_timing` test in `tests/bound.rs` prints these).
+//! `bound_timing` test in `tests/suite/bound.rs` prints these).
 //! [`dp_optimum`] takes O(2^cells · cells) time and memory.
 
 use crate::config::Config;

@@ -97,7 +97,7 @@ function paired(main, opponent, trials) {
   return p;
 }
 
-// The full statistical claim (100 trials a point, native) is tests/theorems.rs
+// The full statistical claim (100 trials a point, native) is tests/suite/theorems.rs
 // theorem1_default_searcher_excess_falls_with_loops_at_a_delta_target; here
 // each step's race on its own targets: the side with more loops takes fewer
 // steps, the paired interval wholly above 0 (16 trials at L = 1000 take about 5 s).

@@ -1,9 +1,9 @@
 //! The `code` MCTS variant and the `paper-code` preset: the bookkeeping of
 //! the authors' `MCTSgaussian.m` on the paper's N-torus. Fidelity to the
 //! code's own numbers (its (N+1)-lattice, `--prior code`) is
-//! `tests/fidelity.rs`.
+//! `tests/suite/fidelity.rs`.
 //!
-//! Runs natively (`cargo test --test paper_code`) and in Node.
+//! Runs natively (`cargo test --test suite paper_code::`) and in Node.
 
 use torus_search::analysis::stats::MeanCi;
 use torus_search::config::preset::Preset;

@@ -1,6 +1,6 @@
 //! The paper's two theorems (section 4) as statistical tests with fixed
 //! seeds and thresholds set from measured frequencies and their standard
-//! errors. `cargo test --test theorems -- --nocapture` prints the tables.
+//! errors. `cargo test --test suite theorems:: -- --nocapture` prints the tables.
 //!
 //! * Theorem 1 (delta target): as the loops L grow, MCTS's move decreases
 //!   the torus ℓ1 distance to the target with frequency → 1. With blind RW
@@ -14,9 +14,7 @@
 //!
 //! Runs natively and in Node (`--target wasm32-unknown-unknown`).
 
-mod common;
-
-use common::{freq_se, wilson, Z_1E4};
+use crate::common::{freq_se, wilson, Z_1E4};
 use torus_search::config::Config;
 use torus_search::game::lattice::Move;
 use torus_search::game::prior::PriorKind;
@@ -44,7 +42,7 @@ fn t1_config(variant: Variant, rv: f64, start: [u32; 2], loops: u32) -> Config {
         rv,
         start,
         target: Some(T1_TARGET),
-        searcher: common::searcher("mcts"),
+        searcher: crate::common::searcher("mcts"),
         ..Config::default()
     }
     .with(&[
@@ -337,16 +335,16 @@ fn theorem2_cells_variant_avoids_its_own_path_like_nsarw() {
     }
     .with(&[("loops", "50"), ("rollout_cap", "2000")]);
     let mcts = Config {
-        searcher: common::searcher("mcts"),
+        searcher: crate::common::searcher("mcts"),
         ..base.clone()
     }
     .with(&[("variant", "cells"), ("rollout", "rw")]);
     let rw = Config {
-        searcher: common::searcher("rw"),
+        searcher: crate::common::searcher("rw"),
         ..base.clone()
     };
     let nsarw = Config {
-        searcher: common::searcher("nsarw"),
+        searcher: crate::common::searcher("nsarw"),
         ..base
     };
     let (mb, me) = backtracks(&mcts, 2001, TRIALS, MOVES);

@@ -257,7 +257,7 @@ fn experiments_md_tables_are_the_committed_results() {
             .unwrap_or(0);
         panic!(
             "EXPERIMENTS.md line {}: a generated table differs from the committed results \
-             (regenerate: UPDATE_TABLES=1 cargo test --test experiment_tables):\n  has:  {}\n  want: {}",
+             (regenerate: UPDATE_TABLES=1 cargo test --test suite experiment_tables::):\n  has:  {}\n  want: {}",
             line + 1,
             doc.lines().nth(line).unwrap_or(""),
             made.lines().nth(line).unwrap_or("")

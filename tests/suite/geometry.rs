@@ -2,12 +2,10 @@
 //! the detection sensor, and optimal steps checked against breadth-first
 //! search. Every reference here is computed independently of `Torus`.
 //!
-//! Runs natively (`cargo test --test geometry`) and in Node
-//! (`cargo test --target wasm32-unknown-unknown --test geometry`).
+//! Runs natively (`cargo test --test suite geometry::`) and in Node
+//! (`cargo test --target wasm32-unknown-unknown --test suite geometry::`).
 
-mod common;
-
-use common::{bfs_steps, ref_dist2, ref_l1, ref_neighbours};
+use crate::common::{bfs_steps, ref_dist2, ref_l1, ref_neighbours};
 use torus_search::config::Config;
 use torus_search::game::lattice::{Move, Sensor, Torus};
 use torus_search::game::prior::PriorKind;
@@ -162,7 +160,7 @@ fn episodes_report_bfs_optimal_steps_in_user_coordinates() {
                         rv,
                         start: [sx, sy],
                         target: Some([tx, ty]),
-                        searcher: common::searcher("rw"),
+                        searcher: crate::common::searcher("rw"),
                         prior: PriorKind::Uniform,
                         ..Config::default()
                     };

@@ -13,7 +13,7 @@ use torus_search::run::episode::{Episode, Status};
 use torus_search::searchers::phase::{PhaseKind, PhaseStep};
 use wasm_bindgen_test::wasm_bindgen_test;
 
-/// The small lattice of the pinned fingerprints (tests/determinism.rs).
+/// The small lattice of the pinned fingerprints (tests/suite/determinism.rs).
 fn small() -> Config {
     Config {
         n: 12,

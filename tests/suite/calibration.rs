@@ -4,7 +4,7 @@
 //! hitting time on a small torus, capped: skewed, with a geometric tail and
 //! a point mass at the cap, like the trials of the paper's searchers.
 //!
-//! `cargo test --release --test calibration -- --ignored --nocapture`
+//! `cargo test --release --test suite calibration:: -- --ignored --nocapture`
 //! prints the table EXPERIMENTS.md quotes (more laws and trial counts).
 #![cfg(not(target_arch = "wasm32"))]
 

@@ -4,9 +4,7 @@
 //! lattices the bound ≤ the dynamic-programming optimum ≤ every planner.
 #![cfg(not(target_arch = "wasm32"))]
 
-mod common;
-
-use common::searcher;
+use crate::common::searcher;
 use torus_search::analysis::bound::{dp_optimum, lower_bound};
 use torus_search::analysis::exact::base_mean;
 use torus_search::analysis::exact::{blind_mean, exact_mean, ExactError};
@@ -470,7 +468,7 @@ fn random_searchers_are_refused_exact_evaluation() {
 
 /// Cost per move of each planner at N = 40 and N = 256 (σ = 10, the first
 /// `moves` moves of trial 0). Speed is measured, never asserted: run with
-/// `cargo test --release --test planners -- --ignored --nocapture cost`.
+/// `cargo test --release --test suite planners::cost_per_move -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn cost_per_move() {

@@ -27,7 +27,7 @@
 //! fingerprints show it), and the mirror files are read from disk.
 #![cfg(not(target_arch = "wasm32"))]
 
-#[path = "../fidelity/mirror.rs"]
+#[path = "../../fidelity/mirror.rs"]
 mod mirror;
 
 use std::path::{Path, PathBuf};

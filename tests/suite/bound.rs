@@ -28,12 +28,10 @@
 //!   first pass that changed anything: 146/28 against 144/28 for a prior
 //!   whose optimal search walks back over two searched cells.
 //!
-//! Runs natively (`cargo test --test bound`) and in Node
-//! (`cargo test --target wasm32-unknown-unknown --test bound`).
+//! Runs natively (`cargo test --test suite bound::`) and in Node
+//! (`cargo test --target wasm32-unknown-unknown --test suite bound::`).
 
-mod common;
-
-use common::{bfs_steps, ref_dist2, ref_l1};
+use crate::common::{bfs_steps, ref_dist2, ref_l1};
 use torus_search::analysis::bound::{
     covered_bound, detection_times, dp_optimum, known_target_mean, lower_bound, lower_bound_capped,
     lower_bound_of, new_cells_per_move, path_mean, BoundError, DP_MAX_CELLS,
@@ -136,7 +134,9 @@ impl Brute<'_> {
                 })
                 .collect(),
             nbrs: (0..cells)
-                .map(|p| common::ref_neighbours(n, xy(n, p)).map(|(x, y)| (y * n + x) as u32))
+                .map(|p| {
+                    crate::common::ref_neighbours(n, xy(n, p)).map(|(x, y)| (y * n + x) as u32)
+                })
                 .collect(),
             mass,
             best: f64::INFINITY,
@@ -658,7 +658,7 @@ fn bound_stays_below_exact_fixed_paths_on_the_paper_lattice() {
 }
 
 /// Times the bound at N = 256 (uniform, the longest sum: 21 845 moves) and
-/// N = 1024. `cargo test --release --test bound -- --ignored --nocapture`.
+/// N = 1024. `cargo test --release --test suite bound:: -- --ignored --nocapture`.
 #[cfg(not(target_arch = "wasm32"))]
 #[test]
 #[ignore]

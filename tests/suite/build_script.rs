@@ -4,8 +4,8 @@
 #![cfg(not(target_arch = "wasm32"))]
 
 #[allow(dead_code)]
-#[path = "../build.rs"]
-mod build_script;
+#[path = "../../build.rs"]
+mod build_rs;
 
 use std::path::Path;
 use std::process::Command;
@@ -34,25 +34,25 @@ fn the_commit_is_embedded_only_from_a_checkout_of_the_crate() {
     std::fs::create_dir_all(&crate_dir).unwrap();
     std::fs::write(crate_dir.join("Cargo.toml"), "[package]\n").unwrap();
     // Not a repository (a tarball): unknown.
-    assert_eq!(build_script::commit_of(&crate_dir), None);
+    assert_eq!(build_rs::commit_of(&crate_dir), None);
     if Command::new("git").arg("--version").output().is_ok() {
         // The crate inside another repository: that commit is not the crate's.
         git(&root, &["init", "-q"]);
         git(&root, &["add", "."]);
         git(&root, &["commit", "-q", "-m", "outer"]);
-        assert_eq!(build_script::commit_of(&crate_dir), None);
+        assert_eq!(build_rs::commit_of(&crate_dir), None);
         // A checkout of the crate: its HEAD, clean; then dirty after an edit.
         git(&crate_dir, &["init", "-q"]);
         git(&crate_dir, &["add", "."]);
         git(&crate_dir, &["commit", "-q", "-m", "crate"]);
-        let (commit, dirty) = build_script::commit_of(&crate_dir).unwrap();
+        let (commit, dirty) = build_rs::commit_of(&crate_dir).unwrap();
         assert_eq!(commit.len(), 40);
         assert!(commit.bytes().all(|b| b.is_ascii_hexdigit()));
         assert!(!dirty);
         std::fs::write(crate_dir.join("Cargo.toml"), "[package]\nname = \"x\"\n").unwrap();
-        assert_eq!(build_script::commit_of(&crate_dir), Some((commit, true)));
+        assert_eq!(build_rs::commit_of(&crate_dir), Some((commit, true)));
         // What the script watches exists or is left out.
-        let watched = build_script::watched(&crate_dir);
+        let watched = build_rs::watched(&crate_dir);
         assert!(watched.iter().any(|p| p.ends_with("HEAD")));
         assert!(watched.iter().any(|p| p.ends_with("Cargo.toml")));
     }

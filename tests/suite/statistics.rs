@@ -4,12 +4,10 @@
 //! the margin is small enough to reject a plausible bug (an off-by-one in
 //! the hitting time, a shifted or unwrapped prior, a wrong exponent).
 //!
-//! Runs natively (`cargo test --test statistics`) and in Node
-//! (`cargo test --target wasm32-unknown-unknown --test statistics`).
+//! Runs natively (`cargo test --test suite statistics::`) and in Node
+//! (`cargo test --target wasm32-unknown-unknown --test suite statistics::`).
 
-mod common;
-
-use common::{chi2_crit_1e4, chi2_merged};
+use crate::common::{chi2_crit_1e4, chi2_merged};
 use torus_search::analysis::stats::MeanCi;
 use torus_search::analysis::theory;
 use torus_search::config::Config;
@@ -27,7 +25,7 @@ fn rw_config(n: u32, rv: f64) -> Config {
     Config {
         n,
         rv,
-        searcher: common::searcher("rw"),
+        searcher: crate::common::searcher("rw"),
         prior: PriorKind::Uniform,
         step_cap: 100_000_000,
         ..Config::default()
@@ -596,7 +594,7 @@ fn nsarw_steps_to_a_least_visited_neighbour_uniformly() {
         let cfg = Config {
             n: 11,
             rv: 0.0,
-            searcher: common::searcher("nsarw"),
+            searcher: crate::common::searcher("nsarw"),
             prior: PriorKind::Uniform,
             seed: 700,
             step_cap: 300,

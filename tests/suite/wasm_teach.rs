@@ -1,7 +1,7 @@
 //! The facade's teaching calls on the `Race` handle, called as the page
 //! calls them (config objects from JSON, answers read back as JS objects):
 //! phase stepping, the tree, the timeline and seeking, paired trials. In
-//! Node.js: `cargo test --target wasm32-unknown-unknown --test wasm_teach`.
+//! Node.js: `cargo test --target wasm32-unknown-unknown --test suite wasm_teach::`.
 #![cfg(target_arch = "wasm32")]
 
 use torus_search::wasm::{self as facade, RaceHandle as Race};
