@@ -27,7 +27,10 @@ WASM_TESTS = $(shell { grep -rlq wasm_bindgen_test src && echo --lib; \
 # figure is at 100 (`make bench BENCH_EXP_TRIALS=100`): hours on 2 cores, as
 # trapped MCTS episodes run to the step cap of 10 000.
 BENCH_EXP_TRIALS ?= 10
-# Minutes of `make soak` (`make test` runs a 30-second soak).
+# Browser test files run side by side: most of their time is spent waiting on
+# the page, not computing (`make test E2E_JOBS=1` runs them one at a time).
+E2E_JOBS ?= 2
+# Minutes of `make soak` (`make test` runs a 20-second soak).
 SOAK_MINUTES ?= 10
 
 section = @printf '\n==== %s ====\n' "$(1)"
@@ -39,7 +42,7 @@ help:
 	@echo "make setup   install the wasm32 target, pinned wasm-bindgen-cli, npm packages"
 	@echo "make build   build www/pkg (wasm-bindgen --target web) and www/vendor"
 	@echo "make serve   setup + build, then serve the page at http://127.0.0.1:8080/"
-	@echo "make test    fmt, actionlint, clippy, native + wasm (Node, Chromium) tests, browser e2e, 30 s soak"
+	@echo "make test    fmt, actionlint, clippy, native + wasm (Node, Chromium) tests, browser e2e, 20 s soak"
 	@echo "make bench   cargo bench, torus-search bench, wasm-in-Node and browser benchmarks"
 	@echo "make dist    self-contained static site in dist/"
 	@echo "make fuzz    the property tests with 100 000 cases each and a fresh seed"
@@ -66,11 +69,15 @@ _dist:
 	$(call section,dist)
 	@scripts/dist.sh
 
-test: setup-browser
+# The slow installs (wasm-bindgen-cli's compile, apt's chromium) go on
+# detached while fmt, clippy and the native tests run, which need neither.
+test:
+	@scripts/setup.sh --browser --background
 	@$(MAKE) --no-print-directory test-fmt
 	@$(MAKE) --no-print-directory test-workflows
 	@$(MAKE) --no-print-directory test-clippy
 	@$(MAKE) --no-print-directory test-native
+	@scripts/setup.sh --browser --wait
 	@$(MAKE) --no-print-directory _test-wasm-and-build
 	@$(MAKE) --no-print-directory _dist
 	@$(MAKE) --no-print-directory test-e2e
@@ -118,9 +125,9 @@ _test-wasm-and-build:
 
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
-	node --test --test-concurrency=1 tests/e2e/*.test.mjs
-	$(call section,soak: 30 s of varied configurations in one page (tests/e2e/soak.mjs; longer: make soak))
-	node tests/e2e/soak.mjs --minutes 0.5
+	node --test --test-concurrency=$(E2E_JOBS) tests/e2e/*.test.mjs
+	$(call section,soak: 20 s of varied configurations in one page (tests/e2e/soak.mjs; longer: make soak))
+	node tests/e2e/soak.mjs --minutes 0.34
 
 # The long soak (README, "Reliability"): `make soak SOAK_MINUTES=60`.
 soak: build setup-browser

@@ -18,7 +18,7 @@
 // not grow.
 //
 // A sample comes every 60 s from 20 minutes up, every 10 s from 2 minutes
-// up, else every 2 s: `make test` runs 30 s (the warm-up and about a dozen
+// up, else every 2 s: `make test` runs 20 s (the warm-up and about eight
 // samples: an error or a gross leak), `make soak` 10 minutes or more.
 //
 // Usage: node tests/e2e/soak.mjs [--minutes M] [--seed S] [--sample SECONDS] [--json FILE]
