@@ -150,12 +150,13 @@ have_cli() {
 # registry no longer serves, so cargo resolves fresh compatible versions.
 # Only the two programs used here, and no TLS (the test runner talks plain
 # HTTP to the local chromedriver): 11 crates fewer, ring's C code among them.
-# opt-level 1: about a fifth less compile work; the CLI then spends about
-# 0.4 s more per test binary (docs/testing.md, "Cold set-up time"). Detached,
-# it runs at a lower priority, so the checks it runs beside keep the cores.
+# opt-level 0: half the compile work of opt-level 1, and the CLI then spends
+# about a second more on each of the few wasm files it handles
+# (docs/performance.md, "Cold set-up"). Detached, it runs at a lower
+# priority, so the checks it runs beside keep the cores.
 install_cli() {
   local t0=$SECONDS
-  ${1:+nice -n 10} env CARGO_PROFILE_RELEASE_OPT_LEVEL=1 cargo install wasm-bindgen-cli \
+  ${1:+nice -n 10} env CARGO_PROFILE_RELEASE_OPT_LEVEL=0 cargo install wasm-bindgen-cli \
     --version "$want" --force --no-default-features --bin wasm-bindgen --bin wasm-bindgen-test-runner
   echo "wasm-bindgen-cli installed in $((SECONDS - t0)) s"
 }
