@@ -167,7 +167,6 @@ export class TreePanel {
       b.disabled = race && !this.viewable(k);
       b.title = b.disabled ? `Board ${name}'s searcher keeps no search tree` : `Show board ${name}'s search tree`;
     });
-    setText('tree-whose', race ? `· board ${BOARDS[this.board]}` : '');
   }
 
   /** True when board `k`'s run has a tree to show. */
