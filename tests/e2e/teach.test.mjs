@@ -275,8 +275,12 @@ test('in a race the tree view shows either board\'s tree: an A/B switch by keys 
     assert.equal(await page.evaluate(() => window.torusTest.treeView().nodes), treeB.nodes.length);
     await page.waitForFunction(() => /[?&]tree=b(&|$)/.test(location.search), null, { timeout: 5_000 });
     // Hovering a node of B's tree draws its line on board B, not A.
-    const at = await page.waitForFunction(() => window.torusTest.treeView().at, null, { timeout: 5_000 }).then((h) => h.jsonValue());
-    const cell = await page.evaluate(() => window.torusTest.treeView().cell);
+    // Where node 1 is drawn and its cell, read in one turn (a fetch could replace the layout between two reads).
+    await page.locator('#tree-canvas').scrollIntoViewIfNeeded();
+    const { at, cell } = await page.waitForFunction(() => {
+      const t = window.torusTest.treeView();
+      return t.board === 1 && t.at ? t : null;
+    }, null, { timeout: 5_000 }).then((h) => h.jsonValue());
     await page.mouse.move(...at);
     await page.waitForFunction(() => window.torusTest.drawn(1).marks.includes('treeLine'), null, { timeout: 5_000 });
     assert.ok(!(await page.evaluate(() => window.torusTest.drawn(0).marks)).includes('treeLine'));
