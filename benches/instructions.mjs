@@ -10,7 +10,8 @@
 // wasm runs in Node.js with --no-liftoff (every function compiled by
 // TurboFan, the tier the page's long-running search ends up in).
 // Prints one JSON object. Needs `make build` (www/pkg), `cargo build
-// --release` and valgrind (`apt-get install -y valgrind`).
+// --release` (in $CARGO_TARGET_DIR when set, like cargo) and valgrind
+// (`apt-get install -y valgrind`).
 // Usage: node benches/instructions.mjs [--config FILE.json] [--seed S] [--loops A..B]
 import { execFileSync, spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
@@ -21,7 +22,7 @@ import { fileURLToPath } from 'node:url';
 const ROOT = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 const SELF = fileURLToPath(import.meta.url);
 const PKG = path.join(ROOT, 'www/pkg');
-const BIN = path.join(ROOT, 'target/release/torus-search');
+const BIN = path.join(process.env.CARGO_TARGET_DIR ? path.resolve(process.env.CARGO_TARGET_DIR) : path.join(ROOT, 'target'), 'release/torus-search');
 /** The default workload: a long N=100 episode, as in the browser benchmark. */
 const DEFAULT_CONFIG = { n: 100, sigma: 15, loops: 100, belief: 'posterior' };
 
@@ -73,7 +74,7 @@ if (!(a >= 0 && b > a && b <= 1e7)) {
   fail(`--loops must be A..B with 0 <= A < B <= 10000000, got ${JSON.stringify(loopsText)}`);
 }
 if (!existsSync(path.join(PKG, 'torus_search_bg.wasm'))) fail('www/pkg is missing; run `make build` first');
-if (!existsSync(BIN)) fail('target/release/torus-search is missing; run `cargo build --release` first');
+if (!existsSync(BIN)) fail(`${BIN} is missing; run \`cargo build --release\` first`);
 if (spawnSync('valgrind', ['--version']).status !== 0) fail('valgrind is missing; run `apt-get install -y valgrind`');
 
 // The native CLI checks the config and names a bad field; do that first so

@@ -4,6 +4,8 @@
 //!
 //! `tree` and `pomcp` report their real trees; `cells` and `code` report
 //! the depth-1 star they select in: the root and its four neighbours.
+//! Every node but the root carries its UCT split as its parent's selection
+//! would weigh it now, from the variant's own selection rule.
 
 use crate::game::lattice::Move;
 use crate::game::named::named_enum;
@@ -130,6 +132,13 @@ pub struct TreeNode {
     pub visits: u32,
     /// Its mean value, as the decision panel shows it (`None` when unvisited).
     pub value: Option<f64>,
+    /// Its UCT split as its parent's selection would weigh it now
+    /// (`None` at the root): the exploitation term Q/N (0 when unvisited),
+    pub mean: Option<f64>,
+    /// the exploration term c·sqrt(ln N_parent / N) (∞ when unvisited),
+    pub explore: Option<f64>,
+    /// and their sum, the UCT value selection ranks the siblings by.
+    pub uct: Option<f64>,
     /// The root's children: times selected in this decision.
     pub picks: Option<u32>,
     /// A star's nodes: visits gained in this decision.
@@ -173,6 +182,9 @@ pub trait Arena {
     fn cell(&self, id: u32) -> u32;
     /// A node's mean value (`None` when unvisited).
     fn value(&self, id: u32) -> Option<f64>;
+    /// The UCT terms `(mean, explore, uct)` of `child` under `parent`, by
+    /// the function the variant's selection ranks children with.
+    fn uct(&self, parent: u32, child: u32) -> (f64, f64, f64);
 }
 
 const NONE: u32 = u32::MAX;
@@ -362,6 +374,7 @@ pub fn export_arena<A: Arena>(
             }
         }
         let visits = a.visits(id);
+        let split = (parent != NONE).then(|| a.uct(parent, id));
         nodes.push(TreeNode {
             id,
             parent: (parent != NONE).then_some(parent),
@@ -370,6 +383,9 @@ pub fn export_arena<A: Arena>(
             depth,
             visits,
             value: a.value(id),
+            mean: split.map(|t| t.0),
+            explore: split.map(|t| t.1),
+            uct: split.map(|t| t.2),
             picks: (depth == 1).then(|| mv.map_or(0, |m| picks[m as usize])),
             gained: None,
             passes: None,
@@ -412,6 +428,9 @@ pub struct StarNode {
     pub gained: u32,
     /// Times selected this decision (neighbours).
     pub picks: u32,
+    /// A neighbour's UCT terms `(mean, explore, uct)` as the variant's
+    /// selection weighs them now (`None` for the root).
+    pub split: Option<(f64, f64, f64)>,
 }
 
 /// Exports the table variants' star (`star[0]` the root, `star[1 + i]`
@@ -463,6 +482,9 @@ pub fn export_star(
             depth: (i > 0) as u32,
             visits: s.visits,
             value: s.value,
+            mean: s.split.map(|t| t.0),
+            explore: s.split.map(|t| t.1),
+            uct: s.split.map(|t| t.2),
             picks: (i > 0).then_some(s.picks),
             gained: Some(s.gained),
             passes: (i > 0).then(|| s.gained.saturating_sub(s.picks)),

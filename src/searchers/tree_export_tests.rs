@@ -22,6 +22,11 @@ impl Arena for Hand {
         let v = self.visits(id);
         (v > 0).then(|| v as f64 / 100.0)
     }
+    /// Names the pair, so a test sees which parent the export asked about.
+    fn uct(&self, parent: u32, child: u32) -> (f64, f64, f64) {
+        let (p, c) = (parent as f64, child as f64);
+        (p, c, p + c)
+    }
 }
 
 const X: u32 = u32::MAX;
@@ -145,6 +150,7 @@ fn a_star_shows_picks_and_passes() {
         value: Some(0.5),
         gained,
         picks,
+        split: mv.map(|m| (m as u32 as f64, 1.0, m as u32 as f64 + 1.0)),
     };
     let star = [
         s(None, 40, 10, 0),
@@ -160,6 +166,15 @@ fn a_star_shows_picks_and_passes() {
     assert_eq!((e.nodes[1].picks, e.nodes[1].passes), (Some(6), Some(3)));
     assert_eq!((e.nodes[3].picks, e.nodes[3].passes), (Some(0), Some(2)));
     assert_eq!(e.nodes[0].passes, None);
+    // Each neighbour carries its own split; the root none.
+    assert_eq!((e.nodes[0].mean, e.nodes[0].uct), (None, None));
+    for n in &e.nodes[1..] {
+        let m = n.mv.unwrap() as u32 as f64;
+        assert_eq!(
+            (n.mean, n.explore, n.uct),
+            (Some(m), Some(1.0), Some(m + 1.0))
+        );
+    }
     let best: Vec<u32> = e.nodes.iter().filter(|n| n.best).map(|n| n.id).collect();
     assert_eq!(best, [0, 1]);
     let e = export_star(&star, &query(3, 0, TreeFocus::All), "n").unwrap();
@@ -170,4 +185,26 @@ fn a_star_shows_picks_and_passes() {
     let e = export_star(&star, &query(10, 0, TreeFocus::Node(3)), "n").unwrap();
     assert_eq!(ids(&e), [0, 3]);
     assert!(export_star(&star, &query(10, 0, TreeFocus::Node(5)), "n").is_err());
+}
+
+#[test]
+fn every_node_but_the_root_carries_the_split_its_parent_weighs() {
+    for q in [
+        TreeQuery::default(),
+        query(4, 0, TreeFocus::All),
+        query(100, 0, TreeFocus::Node(4)),
+    ] {
+        let e = export_arena(&hand(), [0; 4], &q, "n").unwrap();
+        assert!(e.nodes.len() > 1);
+        for n in &e.nodes {
+            match n.parent {
+                None => assert_eq!((n.mean, n.explore, n.uct), (None, None, None)),
+                Some(p) => assert_eq!(
+                    (n.mean, n.explore, n.uct),
+                    (Some(p as f64), Some(n.id as f64), Some((p + n.id) as f64)),
+                    "{q:?}"
+                ),
+            }
+        }
+    }
 }

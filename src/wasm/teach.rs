@@ -155,9 +155,10 @@ impl RaceHandle {
     /// The decision's tree of run `run` cut by `query` (`{ max_nodes,
     /// min_visits, focus: "all" | "best" | node id }`, all optional):
     /// `{ shape: "tree" | "star", nodes: [{ id, parent, move, cell, depth,
-    /// visits, value, picks, gained, passes, children, hidden, leaves,
-    /// best }], total_nodes, note }` in preorder, or null for a searcher
-    /// without one.
+    /// visits, value, mean, explore, uct, picks, gained, passes, children,
+    /// hidden, leaves, best }], total_nodes, note }` in preorder, or null
+    /// for a searcher without one; `mean + explore = uct` is a node's UCT
+    /// split as its parent's selection would weigh it now (null at the root).
     ///
     /// # Errors
     /// A bad run index or query, or a focus on a node the tree does not hold.
@@ -170,8 +171,9 @@ impl RaceHandle {
 
     /// As `tree`, as columns for large trees: `{ shape, total_nodes, note,
     /// id, parent (−1 at the root), move (0–3, −1 at the root), cell, depth,
-    /// visits, value (NaN when unvisited), picks (−1 when none), children,
-    /// hidden, leaves, best (0/1) }`, typed arrays of one entry per node.
+    /// visits, value (NaN when unvisited), mean, explore, uct (the UCT split,
+    /// NaN at the root), picks (−1 when none), children, hidden, leaves,
+    /// best (0/1) }`, typed arrays of one entry per node.
     ///
     /// # Errors
     /// As `tree`.
@@ -193,6 +195,13 @@ impl RaceHandle {
                 &n.iter().map(f).collect::<Vec<_>>()[..],
             ))
         };
+        let f64s = |f: &dyn Fn(&crate::searchers::tree_export::TreeNode) -> Option<f64>| {
+            JsValue::from(js_sys::Float64Array::from(
+                &n.iter()
+                    .map(|x| f(x).unwrap_or(f64::NAN))
+                    .collect::<Vec<_>>()[..],
+            ))
+        };
         let columns = [
             ("shape", JsValue::from_str(t.shape.name())),
             ("total_nodes", JsValue::from(t.total_nodes)),
@@ -208,14 +217,10 @@ impl RaceHandle {
             ("hidden", u32s(&|x| x.hidden as u32)),
             ("leaves", u32s(&|x| x.leaves)),
             ("best", u32s(&|x| x.best as u32)),
-            (
-                "value",
-                JsValue::from(js_sys::Float64Array::from(
-                    &n.iter()
-                        .map(|x| x.value.unwrap_or(f64::NAN))
-                        .collect::<Vec<_>>()[..],
-                )),
-            ),
+            ("value", f64s(&|x| x.value)),
+            ("mean", f64s(&|x| x.mean)),
+            ("explore", f64s(&|x| x.explore)),
+            ("uct", f64s(&|x| x.uct)),
         ];
         for (k, v) in columns {
             set(k, &v).map_err(|_| JsError::new("tree columns: could not set a field"))?;

@@ -6,7 +6,7 @@ import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { readUrl, writeUrl, raceOptions } from '../../www/shared/url-state.js';
+import { readUrl, writeUrl, raceOptions, readTreeView, treeViewText } from '../../www/shared/url-state.js';
 import { wrapSegments } from '../../www/live/renderer.js';
 import { Controller } from '../../www/live/controller.js';
 
@@ -41,7 +41,7 @@ test('every parameter round-trips through the URL', () => {
   ];
   const { config, errors } = engine.parseParams(pairs);
   assert.deepEqual(errors, []);
-  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', tree: 'best', lesson: 'theorem2', race: 'nsarw' };
+  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', tree: 'b.best', lesson: 'theorem2', race: 'nsarw' };
   const back = read(write(config, view));
   assert.deepEqual(back.messages, []);
   assert.deepEqual(back.config, config);
@@ -54,6 +54,22 @@ test('every parameter round-trips through the URL', () => {
   const full = new URLSearchParams(write(config, view, { full: true }));
   for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'vs', 'show', 'at', 'tree', 'lesson', 'race']) assert.ok(full.has(p), p);
   assert.deepEqual(read(full.toString()).config, config);
+});
+
+test('the tree view\'s link text: board B by a b prefix, round trip, and nothing else', () => {
+  const cases = [
+    ['', { board: 0, focus: 'all' }], ['best', { board: 0, focus: 'best' }], ['12', { board: 0, focus: 12 }],
+    ['b', { board: 1, focus: 'all' }], ['b.best', { board: 1, focus: 'best' }], ['b.7', { board: 1, focus: 7 }],
+  ];
+  for (const [text, want] of cases) {
+    assert.deepEqual(readTreeView(text), want, text);
+    assert.equal(treeViewText(want), text);
+    assert.deepEqual(read(`tree=${text}`).messages, [], text);
+  }
+  for (const bad of ['b.', 'bb', 'a', 'a.best', 'best.b', 'b.best.1', 'B', '-1', '1234567890']) {
+    assert.equal(readTreeView(bad), undefined, bad);
+    assert.match(read(`tree=${bad}`).messages[0] ?? '', /^Invalid tree=.*allowed .*b\.best or b\.ID for board B/, bad);
+  }
 });
 
 test('invalid values name the parameter and the allowed range, and the default is used', () => {

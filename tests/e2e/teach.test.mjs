@@ -157,6 +157,25 @@ test('the tree view beside the lattice: linked both ways, cut by visits or to th
     await page.waitForFunction(() => window.torusTest.drawn().marks.includes('treeLine'), null, { timeout: 5_000 });
     assert.match(await text(page, '#tree-info'), /^(Up|Right|Down|Left) \(depth 1\), cell \(\d+, \d+\): N = \d+, Q\/N = [\d.]+, picked \d+ times this decision\. UCT = [\d.]+ \+ [\d.]+ = [\d.]+\.$/);
     await page.waitForFunction(() => window.torusTest.legend().marks.includes('treeLine'), null, { timeout: 5_000 });
+    // A depth-2 node: its UCT split as its parent's selection weighs it, the engine's numbers.
+    const engineTree = await page.evaluate(() => window.torusTest.tree());
+    const deep = engineTree.nodes.findIndex((n) => n.depth === 2 && n.visits > 0);
+    assert.ok(deep > 0, 'a visited depth-2 node');
+    const node = engineTree.nodes[deep];
+    const at = await page.evaluate((i) => window.torusTest.treeView(i).at, deep);
+    await page.mouse.move(...at);
+    await page.waitForFunction((i) => window.torusTest.treeView().hover === i, deep, { timeout: 5_000 });
+    const words = await text(page, '#tree-info');
+    const m = /^(Up|Right|Down|Left) → (Up|Right|Down|Left) \(depth 2\), cell \(\d+, \d+\): N = (\d+), Q\/N = [\d.]+\. UCT = ([\d.]+) \+ ([\d.]+) = ([\d.]+)\.$/.exec(words);
+    assert.ok(m, words);
+    assert.equal(Number(m[3]), node.visits);
+    // fmtNum shows 4 decimals: the page's figures are the engine's, rounded.
+    for (const [shown, want] of [[m[4], node.mean], [m[5], node.explore], [m[6], node.uct]]) assert.ok(Math.abs(Number(shown) - want) <= 5e-5, `${shown} against ${want}`);
+    assert.equal(node.uct, node.mean + node.explore);
+    // Its parent's visits, not the root's, are under the log.
+    const parent = engineTree.nodes.find((n) => n.id === node.parent);
+    const c = await page.evaluate(() => window.torusTest.runs()[0].config.c);
+    assert.ok(Math.abs(node.explore - c * Math.sqrt(Math.log(parent.visits) / node.visits)) < 1e-9, JSON.stringify({ node, parent, c }));
     // Hovering that node's cell on the lattice marks the nodes that reach it (the node among them).
     const cellPoint = await page.evaluate((cell) => {
       const c = document.getElementById('view-0').getBoundingClientRect();
@@ -226,6 +245,74 @@ test('race any two configurations: titles name what differs, and a paired batch 
   await withApp('?autoplay=0&n=16&vs=cc%3D1', async (page) => {
     assert.match(await text(page, '#message'), /Invalid vs="cc=1": .*got cc\. Using no changes\./);
     assert.equal((await page.evaluate(() => window.torusTest.runs())).length, 1);
+  });
+});
+
+test('in a race the tree view shows either board\'s tree: an A/B switch by keys or taps, in the link, the lattice linked to that board', { timeout: 120_000 }, async () => {
+  let link;
+  // A makes a move every 5 loops, B every 40: after 12 loops only B is still in its first decision.
+  await withApp('?autoplay=0&n=16&sigma=3&loops=5&seed=4&variant=tree&vs=loops%3D40', async (page) => {
+    for (let i = 0; i < 12; i++) await page.click('#step-loop');
+    await page.waitForFunction(() => window.torusTest.runs()[1].work >= 12, null, { timeout: 10_000 });
+    const workB = (await page.evaluate(() => window.torusTest.runs()))[1].work;
+    const [treeA, treeB] = await page.evaluate(async () => [await window.torusTest.tree({}, 0), await window.torusTest.tree({}, 1)]);
+    // Under `tree` a first decision's root has one visit per loop; A's kept subtree has fewer.
+    assert.equal(treeB.nodes[0].visits, workB);
+    assert.notEqual(treeA.nodes[0].visits, workB);
+    const shows = (board, rootVisits) => page.waitForFunction(([b, v]) => {
+      const t = window.torusTest.treeView();
+      return t.shown && t.board === b && t.rootVisits === v;
+    }, [board, rootVisits], { timeout: 10_000 });
+    await shows(0, treeA.nodes[0].visits);
+    await page.locator('#tree-canvas').scrollIntoViewIfNeeded();
+    assert.ok(await page.locator('#tree-board').isVisible());
+    assert.equal(await page.getAttribute('#tree-board-0', 'aria-pressed'), 'true');
+    // The switch by keyboard: B's tree, its root's visits B's loops, and the link says so.
+    await page.focus('#tree-board-1');
+    await page.keyboard.press('Enter');
+    await shows(1, workB);
+    assert.equal(await page.getAttribute('#tree-board-1', 'aria-pressed'), 'true');
+    assert.equal(await page.evaluate(() => window.torusTest.treeView().nodes), treeB.nodes.length);
+    await page.waitForFunction(() => /[?&]tree=b(&|$)/.test(location.search), null, { timeout: 5_000 });
+    // Hovering a node of B's tree draws its line on board B, not A.
+    // Where node 1 is drawn and its cell, read in one turn (a fetch could replace the layout between two reads).
+    await page.locator('#tree-canvas').scrollIntoViewIfNeeded();
+    const { at, cell } = await page.waitForFunction(() => {
+      const t = window.torusTest.treeView();
+      return t.board === 1 && t.at ? t : null;
+    }, null, { timeout: 5_000 }).then((h) => h.jsonValue());
+    await page.mouse.move(...at);
+    await page.waitForFunction(() => window.torusTest.drawn(1).marks.includes('treeLine'), null, { timeout: 5_000 });
+    assert.ok(!(await page.evaluate(() => window.torusTest.drawn(0).marks)).includes('treeLine'));
+    // Hovering that node's cell on board B marks the nodes of B's tree that reach it.
+    const cellPoint = await page.evaluate((c) => {
+      const r = document.getElementById('view-1').getBoundingClientRect();
+      const n = window.torusTest.runs()[1].n;
+      return [r.left + ((c % n) + 0.5) * (r.width / n), r.top + (Math.floor(c / n) + 0.5) * (r.height / n)];
+    }, cell);
+    await page.mouse.move(...cellPoint);
+    await page.waitForFunction(() => window.torusTest.treeView().marked.includes(1), null, { timeout: 5_000 });
+    // B's best line goes into the link with the board.
+    await page.check('#tree-best');
+    await page.waitForFunction(() => /[?&]tree=b\.best(&|$)/.test(location.search), null, { timeout: 5_000 });
+    link = await page.evaluate(() => location.href);
+  });
+  // The link reopens on B's best line; a tap on A goes back to A's tree.
+  await withApp(link.slice(link.indexOf('?')), async (page) => {
+    const bestB = await page.evaluate(() => window.torusTest.tree({ focus: 'best' }, 1));
+    await page.waitForFunction((n) => {
+      const t = window.torusTest.treeView();
+      return t.shown && t.board === 1 && t.focus === 'best' && t.nodes === n;
+    }, bestB.nodes.length, { timeout: 15_000 });
+    await page.locator('#tree-board-0').scrollIntoViewIfNeeded();
+    await page.click('#tree-board-0');
+    await page.waitForFunction(() => window.torusTest.treeView().board === 0 && /[?&]tree=best(&|$)/.test(location.search), null, { timeout: 5_000 });
+  });
+  // Board B without a race: a message naming the value, and A's tree.
+  await withApp('?autoplay=0&n=12&variant=tree&tree=b.best', async (page) => {
+    await page.waitForFunction(() => /Tree view: tree=b\.best shows board B's tree, but there is no race/.test(document.getElementById('message').textContent), null, { timeout: 10_000 });
+    await page.waitForFunction(() => window.torusTest.treeView().board === 0 && /[?&]tree=best(&|$)/.test(location.search), null, { timeout: 5_000 });
+    assert.ok(await page.locator('#tree-board').isHidden());
   });
 });
 

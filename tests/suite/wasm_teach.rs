@@ -104,6 +104,10 @@ fn the_tree_counts_match_the_decision_panel() {
         let ch = children.get(m as u32);
         assert_eq!(num(&n, "visits"), num(&ch, "visits"));
         assert_eq!(num(&n, "picks"), num(&ch, "selected"));
+        // A root child's UCT split is the decision panel's.
+        for k in ["mean", "explore", "uct"] {
+            assert_eq!(num(&n, k), num(&ch, k), "{k}");
+        }
         sum += num(&n, "visits");
     }
     assert_eq!(sum, 6.0);
@@ -114,6 +118,13 @@ fn the_tree_counts_match_the_decision_panel() {
         js_sys::Int32Array::new(&get(&cols, "parent")).get_index(0),
         -1
     );
+    // The split's columns: NaN at the root, the terms adding up below it.
+    let col = |k: &str| js_sys::Float64Array::new(&get(&cols, k)).to_vec();
+    let (mean, explore, uct) = (col("mean"), col("explore"), col("uct"));
+    assert!(mean[0].is_nan() && explore[0].is_nan() && uct[0].is_nan());
+    for i in 1..3 {
+        assert_eq!(uct[i], mean[i] + explore[i]);
+    }
     // Bad queries name what is wrong.
     let e = message(r.tree(0.0, js(r#"{"focus": 999}"#)).unwrap_err());
     assert!(e.contains("node 999") && e.contains("0..="), "{e}");

@@ -30,8 +30,9 @@ export class Boards {
     this.renderers = [0, 1].map((i) => new Renderer($(`view-${i}`)));
     this.motion = [0, 1].map(() => ({ glide: new Glide(), trails: new TraceKeeper(), pulse: new Pulse() }));
     this.selected = -1;
-    this.treeLine = null; // cells of the tree node in focus (tree-panel.js), drawn on board 0
-    this.onHoverCell = null; // (cell | −1) => void: the pointer over board 0's cells
+    this.treeBoard = 0; // the board whose tree the tree view shows (tree-panel.js)
+    this.treeLine = null; // cells of the tree node in focus, drawn on that board
+    this.onHoverCell = null; // (cell | −1) => void: the pointer over that board's cells
     const ro = new ResizeObserver(() => {
       this.fit();
       onResize();
@@ -63,7 +64,7 @@ export class Boards {
     });
     let hovered = -1;
     const hover = (idx) => {
-      if (i !== 0 || idx === hovered) return;
+      if (i !== this.treeBoard || idx === hovered) return;
       hovered = idx;
       this.onHoverCell?.(idx);
     };
@@ -165,7 +166,7 @@ export class Boards {
       intent: opts.intent && running ? run.intent : null,
       decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
       selected: i === 0 ? this.selected : -1,
-      treeLine: running ? (i === 0 && this.treeLine) || loop?.line || null : null,
+      treeLine: running ? (i === this.treeBoard && this.treeLine) || loop?.line || null : null,
       grid: opts.grid,
       tiling: opts.tiling,
     };

@@ -61,8 +61,8 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
   const chart = new StepsChart($('chart'));
   const timelineBar = new TimelineBar((action, arg) => live.playback(action, arg));
   const tree = new TreePanel({
-    controller, boards, lut: engine.paletteLut('viridis'), focus: live.view.tree,
-    onFocus: (f) => live.change({ view: { tree: f === 'all' ? '' : String(f) }, restart: false }),
+    controller, boards, lut: engine.paletteLut('viridis'), link: live.view.tree,
+    onLink: (text) => live.change({ view: { tree: text }, restart: false }),
   });
   controller.on('message', (text) => showMessage(text));
   const drawn = new Set(); // marks drawn since the last legend update
@@ -74,7 +74,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     runTime = 0;
     const titles = raceTitles(engine, runs);
     chart.reset(titles);
-    tree.reset();
+    tree.reset(runs);
     boards.setup(runs, titles);
     legend.reset();
     drawn.clear();
@@ -103,7 +103,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     const opts = viewState.options();
     const requested = viewState.layerRequests();
     const { pending, animating } = boards.draw(runs, requested, opts, { preview: painter.preview, now: ts, live: state === 'running', still: reducedMotion() });
-    const growing = tree.update(runs[0], { running: state === 'running', now: ts, still: reducedMotion() });
+    const growing = tree.update(runs, { running: state === 'running', now: ts, still: reducedMotion() });
     if (pending || animating || growing) controller.dispatch({ type: 'animate' });
     for (const m of boards.drawnMarks(0)) drawn.add(m);
     // The board's description for screen readers changes at most once a second.

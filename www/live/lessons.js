@@ -17,7 +17,7 @@ export const LESSONS = [
     title: 'UCT and the exploration constant c',
     query: 'n=15&sigma=3&loops=60&seed=5&variant=tree&c=0.2&vs=c=3&speed=1&show=visits,path,grid,arrows,rollouts,practice',
     text: 'UCT scores a move by its mean reward plus c·√(ln N / Nᵢ). A small c trusts the means and keeps picking the move that looks best; a large c spreads the loops over all four moves.',
-    look: 'Board A has c = 0.2, board B c = 3, on the same target. Compare the decision arrows: A’s are lopsided, B’s even. The tree view shows A’s tree.',
+    look: 'Board A has c = 0.2, board B c = 3, on the same target. Compare the decision arrows: A’s are lopsided, B’s even. The tree view shows A’s tree; its Board B button shows B’s.',
     claim: 'Over a decision, the most picked move takes a larger share of the loops with c = 0.2 than with c = 3.',
   },
   {

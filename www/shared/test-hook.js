@@ -16,11 +16,14 @@
 //   seek(point)        seeks to { move, loop, phase } (a 'seek' command); resolves to { ok, error }
 //                      once the page has drawn that point
 //   back(unit)         one phase | loop | move back, as seek
-//   tree(query, run)   the engine's tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
-//                      move, visits, value, … }], total_nodes }), or null for a searcher without one
+//   tree(query, run)   run `run`'s tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
+//                      move, visits, value, mean, explore, uct, … }], total_nodes }; mean + explore =
+//                      uct, the UCT split its parent's selection weighs, null at the root), or null
+//                      for a searcher without one
 //   narration()        the narration line's text
-//   treeView(i = 1)    the tree panel: { shown, nodes, drawn, hover, marked: [node indices], focus,
-//                      cell: node i's cell, at: node i's client point or null }
+//   treeView(i = 1)    the tree panel: { shown, board: whose tree (0: A, 1: B, switched by the buttons
+//                      #tree-board-0 and -1), nodes, rootVisits, drawn, hover, marked: [node indices],
+//                      focus, cell: node i's cell, at: node i's client point or null }
 //   treeFocus(focus)   shows 'all', 'best' or a node id's subtree (as a click on a node)
 //   request(type, payload)  a raw search-worker request (benchLoops, usage, panicForTest, oomForTest)
 //   engine             the page's wasm module (benchmark workloads)

@@ -37,6 +37,24 @@ export function raceOptions(engine, schema) {
   return out;
 }
 
+/**
+ * The tree view's link text (`tree=`): `[b.](best|ID)`, or `b` alone, or
+ * empty → { board: 0 | 1 (B with the `b` prefix), focus: 'all' | 'best' | a node id };
+ * undefined for anything else.
+ */
+export function readTreeView(s) {
+  const m = /^(?:b(?:\.(best|\d{1,9}))?|(best|\d{1,9}))?$/.exec(s);
+  if (!m) return undefined;
+  const f = m[1] ?? m[2];
+  return { board: s !== '' && m[2] === undefined ? 1 : 0, focus: f === undefined ? 'all' : f === 'best' ? 'best' : Number(f) };
+}
+
+/** The link text of a tree view state (readTreeView's inverse). */
+export function treeViewText({ board = 0, focus = 'all' }) {
+  const f = focus === 'all' ? '' : String(focus);
+  return board ? (f ? `b.${f}` : 'b') : f;
+}
+
 /** The page's own parameters: key → { def, help, parse(text) → value | undefined, text(value) }. */
 export function viewSpecs(races) {
   return {
@@ -72,8 +90,8 @@ export function viewSpecs(races) {
     },
     tree: {
       def: '',
-      help: 'the tree view\'s focus: best (the best line) or a node id, or empty for the whole tree',
-      parse: (s) => (s === '' || s === 'best' || /^\d{1,9}$/.test(s) ? s : undefined),
+      help: 'the tree view\'s focus: best (the best line) or a node id, or empty for the whole tree; in a race b, b.best or b.ID for board B\'s tree',
+      parse: (s) => (readTreeView(s) ? s : undefined),
       text: String,
     },
     lesson: {

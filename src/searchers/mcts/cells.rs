@@ -66,7 +66,7 @@ pub struct CellTable {
 }
 
 /// What the table's counts mean, for people.
-const NOTE: &str = "cells (the paper's table): N counts every loop that passes through a cell, picked or not, over the whole trial (decayed as searched cells lose the belief's mass); picks are this decision's selections; passes are this decision's pass-through visits";
+const NOTE: &str = "cells (the paper's table): N counts every loop that passes through a cell, picked or not, over the whole trial (decayed as searched cells lose the belief's mass); picks are this decision's selections; passes are this decision's pass-through visits; a neighbour's UCT split is the next selection's, from the table's counts with pass-through visits included, as the paper selects";
 
 /// The default decay factor: the share of the table's counts kept for
 /// each 1% of the unsearched mass a move searches (`EXPERIMENTS.md`, "The
@@ -426,6 +426,11 @@ impl Stats for CellTable {
                 } else {
                     0
                 },
+                // Selection ranks the neighbours by this view's terms.
+                split: (i > 0).then(|| {
+                    let ch = &view.children[i - 1];
+                    (ch.mean, ch.explore, ch.uct)
+                }),
             }
         });
         export_star(&nodes, q, NOTE)

@@ -57,7 +57,7 @@ pub struct CodeTable {
 }
 
 /// What the code's counts mean, for people.
-const NOTE: &str = "code (the authors' MATLAB statistics): Nx counts the root and the picked neighbour once a loop and every rollout step into a cell, repeats included, over the whole trial; picks are this decision's selections; passes are this decision's visits from rollouts passing through";
+const NOTE: &str = "code (the authors' MATLAB statistics): Nx counts the root and the picked neighbour once a loop and every rollout step into a cell, repeats included, over the whole trial; picks are this decision's selections; passes are this decision's visits from rollouts passing through; a neighbour's UCT split is the next selection's, with that loop's root visit counted first as the code does (a neighbour never visited is rolled out from first)";
 
 /// Counts a visit for every rollout step (the code's `Nx(sx1,sy1) += 1`).
 struct PassThrough<'a> {
@@ -113,6 +113,39 @@ impl CodeTable {
         (out.steps, out.detected)
     }
 
+    /// The decision statistics at `root` with its count taken as `parent`.
+    #[inline(always)]
+    fn view_with(&self, torus: &Torus, root: u32, c: f64, parent: u32) -> DecisionView {
+        let children = std::array::from_fn(|i| {
+            let cell = torus.step(root, Move::ALL[i]);
+            let (v, q) = (self.visits[cell as usize], self.q[cell as usize]);
+            ChildStat::new(cell, v, q, parent, c, self.selected[i])
+        });
+        DecisionView {
+            parent_visits: parent,
+            c,
+            children,
+        }
+    }
+
+    /// What the next loop's selection at `root` reads: the first
+    /// neighbour never visited, if any (an expansion rollout, not a loop),
+    /// and the view it ranks by, whose parent count includes that loop's
+    /// root visit when it is a loop (the code counts it before the UCT
+    /// values).
+    #[inline(always)]
+    fn selection(&self, torus: &Torus, root: u32, c: f64) -> (Option<usize>, DecisionView) {
+        // The code tests the neighbours in this order once per move, and a
+        // count never returns to 0, so testing here on every call finds
+        // them exactly then.
+        let unvisited = Move::ALL
+            .iter()
+            .map(|&m| torus.step(root, m))
+            .position(|cell| self.visits[cell as usize] == 0);
+        let parent = self.visits[root as usize] + u32::from(unvisited.is_none());
+        (unvisited, self.view_with(torus, root, c, parent))
+    }
+
     /// The exploitation term `Qx/Nx` the decision panel shows for `cell`.
     fn mean(&self, cell: u32) -> f64 {
         let v = self.visits[cell as usize];
@@ -142,17 +175,7 @@ impl Stats for CodeTable {
     }
 
     fn view(&self, torus: &Torus, root: u32, c: f64) -> DecisionView {
-        let parent = self.visits[root as usize];
-        let children = std::array::from_fn(|i| {
-            let cell = torus.step(root, Move::ALL[i]);
-            let (v, q) = (self.visits[cell as usize], self.q[cell as usize]);
-            ChildStat::new(cell, v, q, parent, c, self.selected[i])
-        });
-        DecisionView {
-            parent_visits: parent,
-            c,
-            children,
-        }
+        self.view_with(torus, root, c, self.visits[root as usize])
     }
 
     /// Selection: the first neighbour never visited (an expansion
@@ -160,29 +183,14 @@ impl Stats for CodeTable {
     /// of this loop counted first, as in the code.
     #[inline(always)]
     fn select(&mut self, env: &mut LoopEnv<'_>, root: u32, rec: Option<&mut PhaseRecord>) {
-        // The code tests the neighbours in this order once per move, and a
-        // count never returns to 0, so testing here on every call finds
-        // them exactly then.
-        let unvisited = Move::ALL
-            .iter()
-            .map(|&m| env.torus.step(root, m))
-            .position(|cell| self.visits[cell as usize] == 0);
-        let (a, counts, view, rule) = match unvisited {
-            Some(i) => (
-                i,
-                false,
-                self.view(env.torus, root, env.c),
-                SelectRule::Unvisited,
-            ),
+        let (unvisited, view) = self.selection(env.torus, root, env.c);
+        let (a, counts, rule) = match unvisited {
+            Some(i) => (i, false, SelectRule::Unvisited),
             None => {
-                // The root's visit comes before the UCT values, as in the code.
-                self.visits[root as usize] += 1;
-                let view = self.view(env.torus, root, env.c);
-                self.visits[root as usize] -= 1;
                 let a =
                     argmax_random(view.children.map(|ch| ch.uct), [true; 4], env.rng).unwrap_or(0);
                 self.selected[a] += 1;
-                (a, true, view, SelectRule::Uct)
+                (a, true, SelectRule::Uct)
             }
         };
         (self.pick, self.child, self.counts) = (a, view.children[a].cell, counts);
@@ -291,7 +299,8 @@ impl Stats for CodeTable {
         c: f64,
         q: &TreeQuery,
     ) -> Result<TreeExport, TreeError> {
-        let view = self.view(torus, root, c);
+        // The terms the next loop's selection reads (its picks are the view's).
+        let (_, view) = self.selection(torus, root, c);
         let cells = star(torus, root);
         let start = match self.start {
             Some((r, counts)) if r == root => counts,
@@ -311,6 +320,10 @@ impl Stats for CodeTable {
                 } else {
                     0
                 },
+                split: (i > 0).then(|| {
+                    let ch = &view.children[i - 1];
+                    (ch.mean, ch.explore, ch.uct)
+                }),
             }
         });
         export_star(&nodes, q, NOTE)

@@ -90,10 +90,10 @@ impl Clone for Tree {
 }
 
 /// What a tree's counts mean, for people.
-const NOTE: &str = "tree: N counts the loops through a node (the root's since it was created, kept across real moves with its subtree); a node's N is 1 more than its children's sum when it was the leaf a loop expanded, or its cell detected the practice target; picks are this decision's selections at the root";
+const NOTE: &str = "tree: N counts the loops through a node (the root's since it was created, kept across real moves with its subtree); a node's N is 1 more than its children's sum when it was the leaf a loop expanded, or its cell detected the practice target; picks are this decision's selections at the root; a node's UCT split is its parent's selection's terms now (a parent with an untried move expands it first)";
 
-/// The tree as [`Arena`] reads it.
-struct View<'a>(&'a [Node]);
+/// The tree as [`Arena`] reads it, with the exploration constant.
+struct View<'a>(&'a [Node], f64);
 
 impl Arena for View<'_> {
     fn nodes(&self) -> usize {
@@ -112,6 +112,16 @@ impl Arena for View<'_> {
         let n = &self.0[id as usize];
         (n.visits > 0).then(|| n.reward / n.visits as f64)
     }
+    fn uct(&self, parent: u32, child: u32) -> (f64, f64, f64) {
+        weigh(&self.0[parent as usize], &self.0[child as usize], self.1)
+    }
+}
+
+/// The UCT terms of `child` under `parent`: what selection ranks the
+/// children by (and the export shows).
+#[inline(always)]
+fn weigh(parent: &Node, child: &Node, c: f64) -> (f64, f64, f64) {
+    uct_terms(child.reward, child.visits, parent.visits, c)
 }
 
 impl Tree {
@@ -147,7 +157,7 @@ impl Tree {
         for i in 0..4 {
             if n.children[i] != NONE {
                 let ch = &self.nodes[n.children[i] as usize];
-                values[i] = uct_terms(ch.reward, ch.visits, n.visits, env.c).2;
+                values[i] = weigh(n, ch, env.c).2;
                 valid[i] = true;
             }
         }
@@ -373,10 +383,10 @@ impl Stats for Tree {
         &self,
         _torus: &Torus,
         _root: u32,
-        _c: f64,
+        c: f64,
         q: &TreeQuery,
     ) -> Result<TreeExport, TreeError> {
-        export_arena(&View(&self.nodes), self.selected, q, NOTE)
+        export_arena(&View(&self.nodes, c), self.selected, q, NOTE)
     }
 
     fn heap_bytes(&self) -> usize {

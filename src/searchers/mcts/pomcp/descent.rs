@@ -15,10 +15,11 @@ use crate::searchers::phase::{
 use crate::searchers::tree_export::{export_arena, Arena, TreeError, TreeExport, TreeQuery};
 
 /// What the belief MCTS's counts mean, for people.
-const NOTE: &str = "pomcp (the belief MCTS): N counts the loops through a node, kept across real moves with its subtree; a node's value is its mean return scaled to [0, 1] (higher is better), as the decision panel shows; picks are this decision's selections at the root";
+const NOTE: &str = "pomcp (the belief MCTS): N counts the loops through a node, kept across real moves with its subtree; a node's value is its mean return scaled to [0, 1] (higher is better), as the decision panel shows; picks are this decision's selections at the root; a node's UCT split is its parent's selection's terms now, on the scaled values (a parent with an untried move expands it first, and the root follows the plan on the decision's first loop)";
 
-/// The tree as [`Arena`] reads it, with its values.
-struct View<'a>(&'a BeliefTree);
+/// The tree as [`Arena`] reads it, with its values and the exploration
+/// constant.
+struct View<'a>(&'a BeliefTree, f64);
 
 impl Arena for View<'_> {
     fn nodes(&self) -> usize {
@@ -37,12 +38,17 @@ impl Arena for View<'_> {
         let n = &self.0.nodes[id as usize];
         (n.visits > 0).then(|| self.0.value(n))
     }
+    fn uct(&self, parent: u32, child: u32) -> (f64, f64, f64) {
+        let n = &self.0.nodes;
+        self.0
+            .weigh(&n[parent as usize], &n[child as usize], self.1)
+    }
 }
 
 impl BeliefTree {
-    /// The tree cut by `q`, with its scaled values.
-    pub(super) fn export(&self, q: &TreeQuery) -> Result<TreeExport, TreeError> {
-        export_arena(&View(self), self.selected, q, NOTE)
+    /// The tree cut by `q`, with its scaled values and UCT splits at `c`.
+    pub(super) fn export(&self, c: f64, q: &TreeQuery) -> Result<TreeExport, TreeError> {
+        export_arena(&View(self, c), self.selected, q, NOTE)
     }
 
     /// The index of the move the plan forces at `node` (the root, while

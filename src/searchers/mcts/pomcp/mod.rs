@@ -207,6 +207,19 @@ impl BeliefTree {
         }
     }
 
+    /// The UCT terms of `child` under `parent`, on the scaled values:
+    /// what selection ranks the children by (and the export shows).
+    #[inline(always)]
+    fn weigh(&self, parent: &Node, child: &Node, c: f64) -> (f64, f64, f64) {
+        let v = self.value(child);
+        crate::searchers::decision::uct_terms(
+            v * child.visits as f64,
+            child.visits,
+            parent.visits,
+            c,
+        )
+    }
+
     fn select_child(&self, node: u32, env: &mut LoopEnv<'_>) -> Option<usize> {
         let n = &self.nodes[node as usize];
         let mut values = [0.0; 4];
@@ -214,14 +227,7 @@ impl BeliefTree {
         for i in 0..4 {
             if n.children[i] != NONE {
                 let ch = &self.nodes[n.children[i] as usize];
-                let v = self.value(ch);
-                values[i] = crate::searchers::decision::uct_terms(
-                    v * ch.visits as f64,
-                    ch.visits,
-                    n.visits,
-                    env.c,
-                )
-                .2;
+                values[i] = self.weigh(n, ch, env.c).2;
                 valid[i] = true;
             }
         }
@@ -626,10 +632,10 @@ impl Stats for BeliefTree {
         &self,
         _torus: &Torus,
         _root: u32,
-        _c: f64,
+        c: f64,
         q: &TreeQuery,
     ) -> Result<TreeExport, TreeError> {
-        self.export(q)
+        self.export(c, q)
     }
 
     fn heap_bytes(&self) -> usize {
