@@ -32,4 +32,5 @@ mod theorems;
 mod tidy;
 mod timeline;
 mod trap;
+mod tree_split;
 mod wasm_teach;

@@ -165,3 +165,43 @@ fn no_two_public_types_share_a_name() {
         shared.join("\n")
     );
 }
+
+/// Test files that need a binary of their own: a global allocator, or
+/// `run_in_browser` (set once per wasm test binary).
+const OWN_BINARY: [&str; 3] = ["infra_browser.rs", "memory.rs", "wasm_facade.rs"];
+
+#[test]
+fn integration_tests_are_modules_of_the_suite() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let main = std::fs::read_to_string(root.join("tests/suite/main.rs")).expect("the suite reads");
+    let mut stray = Vec::new();
+    for e in std::fs::read_dir(root.join("tests"))
+        .expect("tests/ reads")
+        .flatten()
+    {
+        let name = e.file_name().to_string_lossy().to_string();
+        if name.ends_with(".rs") && !OWN_BINARY.contains(&name.as_str()) {
+            stray.push(format!(
+                "tests/{name}: move it to tests/suite/ and add `mod` for it"
+            ));
+        }
+    }
+    for e in std::fs::read_dir(root.join("tests/suite"))
+        .expect("tests/suite reads")
+        .flatten()
+    {
+        let name = e.file_name().to_string_lossy().to_string();
+        let module = name.strip_suffix(".rs").unwrap_or(&name);
+        let is_module = e.path().is_dir() || name.ends_with(".rs");
+        if is_module && module != "main" && !main.contains(&format!("mod {module};")) {
+            stray.push(format!(
+                "tests/suite/{name}: not declared in tests/suite/main.rs, so it never runs"
+            ));
+        }
+    }
+    assert!(
+        stray.is_empty(),
+        "each its own binary, linked and run apart:\n{}",
+        stray.join("\n")
+    );
+}
