@@ -5,3 +5,4 @@ pub mod episode;
 pub mod paired;
 pub mod race;
 pub mod timeline;
+pub mod trial_result;
