@@ -15,6 +15,7 @@ use crate::searchers::mcts::search::{BELIEF, KEEP_TRACES, LOOPS, MS};
 use crate::searchers::phase::{PhaseKind, PhaseRecord, PhaseStep};
 use crate::searchers::tree_export::{TreeError, TreeExport, TreeQuery};
 use crate::searchers::{MoveScores, Planning, Searcher, SearcherInfo, Setup, World};
+use std::sync::Arc;
 
 pub use crate::run::trial_result::{TrialResult, TRIAL_FIELDS};
 
@@ -152,6 +153,9 @@ pub struct Episode {
     decision_rollouts: u64,
     /// The trial's index in its batch.
     index: u64,
+    /// Moves made whatever the searcher decides: a branch's shared prefix
+    /// (see `crate::run::branch`); empty for a run of its own.
+    forced: Arc<[Move]>,
 }
 
 impl Episode {
@@ -211,6 +215,7 @@ impl Episode {
             phased: None,
             decision_rollouts: 0,
             index,
+            forced: Arc::from([]),
             sensor,
             torus,
         };
@@ -658,6 +663,7 @@ impl Episode {
             phased: self.phased,
             decision_rollouts: self.decision_rollouts,
             index: self.index,
+            forced: self.forced.clone(),
         })
     }
 
@@ -668,12 +674,31 @@ impl Episode {
     /// that built this run).
     pub fn restart(&self) -> Result<Episode, ParamError> {
         let mut ep = Episode::trial(&self.cfg, self.index)?;
+        ep.forced = self.forced.clone();
         if self.blind {
             ep.blind = true;
             ep.status = Status::Running;
         }
         ep.set_clock(self.budget.clock());
         Ok(ep)
+    }
+
+    /// The trial's index in its batch.
+    pub fn index(&self) -> u64 {
+        self.index
+    }
+
+    /// Makes the first `moves.len()` real moves these, whatever the
+    /// searcher decides (it still decides each, and observes the move
+    /// made); call before the first move.
+    pub(crate) fn force(&mut self, moves: Arc<[Move]>) {
+        self.forced = moves;
+    }
+
+    /// Real moves forced on the run (a branch's shared prefix; 0 for a
+    /// run of its own).
+    pub fn forced(&self) -> u32 {
+        self.forced.len() as u32
     }
 
     /// The clock time budgets read.

@@ -1,6 +1,7 @@
-//! Runs: one trial, runs stepped together, batches of trials.
+//! Runs: one trial, runs stepped together, branched, batches of trials.
 
 pub mod batch;
+pub mod branch;
 pub mod episode;
 pub mod paired;
 pub mod race;
