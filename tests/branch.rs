@@ -237,7 +237,7 @@ fn a_branched_race_seeks_back_into_its_prefix_and_forward() {
         Err(BranchError::PastEnd { at: 9, reached: 8 })
     );
     assert!(matches!(
-        race.branch(&[b.clone()], 3),
+        race.branch(std::slice::from_ref(&b), 3),
         Err(BranchError::Runs { given: 1, runs: 2 })
     ));
     assert!(race
