@@ -407,7 +407,13 @@ impl Episode {
         self.result()
     }
 
-    fn apply(&mut self, m: Move) {
+    fn apply(&mut self, decided: Move) {
+        // In a branch's shared prefix the searcher decided, but the move
+        // made is the parent run's.
+        let m = self
+            .forced
+            .get(self.steps() as usize)
+            .map_or(decided, |&f| f);
         self.decision_rollouts = self.counters.rollouts;
         let pos = self.torus.step(self.position(), m);
         self.path.push(pos);
