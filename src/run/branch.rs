@@ -70,10 +70,7 @@ impl std::fmt::Display for BranchError {
             } => write!(
                 f,
                 "{key} cannot change in a branch ({parent} → {branch}): it changes the world \
-                 (the lattice, the target or what is sensed), so the path so far would not be a \
-                 path of the same game; only the searcher's parameters can branch (a change of \
-                 {} restarts the run)",
-                WORLD_PARAMS.join(", ")
+                 the path so far was made in; only the searcher's parameters can branch"
             ),
             BranchError::PastEnd { at, reached } => write!(
                 f,
