@@ -31,7 +31,7 @@ test('no parameters give the default demo', () => {
   assert.equal(config.loops, 100);
   assert.equal(config.c, Math.SQRT2);
   assert.equal(config.seed, '1');
-  assert.deepEqual(view, { speed: 10, autoplay: true, vs: '', show: '', at: '', tree: '', lesson: '', race: '' });
+  assert.deepEqual(view, { speed: 10, autoplay: true, vs: '', show: '', at: '', branch: '', tree: '', lesson: '', race: '' });
 });
 
 test('every parameter round-trips through the URL', () => {
@@ -41,7 +41,7 @@ test('every parameter round-trips through the URL', () => {
   ];
   const { config, errors } = engine.parseParams(pairs);
   assert.deepEqual(errors, []);
-  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', tree: 'best', lesson: 'theorem2', race: 'nsarw' };
+  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', branch: '4:c=0.5 loops=30/9', tree: 'best', lesson: 'theorem2', race: 'nsarw' };
   const back = read(write(config, view));
   assert.deepEqual(back.messages, []);
   assert.deepEqual(back.config, config);
@@ -52,7 +52,7 @@ test('every parameter round-trips through the URL', () => {
   // Defaults are left out, except the seed; the full form names every parameter.
   assert.equal(write(read('').config, read('').view), 'seed=1');
   const full = new URLSearchParams(write(config, view, { full: true }));
-  for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'vs', 'show', 'at', 'tree', 'lesson', 'race']) assert.ok(full.has(p), p);
+  for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'vs', 'show', 'at', 'branch', 'tree', 'lesson', 'race']) assert.ok(full.has(p), p);
   assert.deepEqual(read(full.toString()).config, config);
 });
 
@@ -60,7 +60,7 @@ test('invalid values name the parameter and the allowed range, and the default i
   const bad = {
     n: '2', prior: 'cauchy', sigma: '-1', rv: 'NaN', start: '0,5', searcher: 'astar', variant: 'forest',
     rollout: 'bfs', belief: 'maybe', loops: '0', ms: '-5', c: 'inf', mu: '1', final: 'best',
-    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me', step_cap: '0', paint: '*', at: '1.x', show: 'Visits<b>', tree: 'worst', lesson: 'none',
+    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me', step_cap: '0', paint: '*', at: '1.x', branch: '3:c', show: 'Visits<b>', tree: 'worst', lesson: 'none',
   };
   const { config, view, messages } = read(new URLSearchParams(bad).toString());
   const d = read('');
