@@ -59,6 +59,6 @@ export class BranchOffer {
     el.hidden = !last;
     if (!last) return;
     const what = changes(this.engine, last.config, run.config);
-    setText('branch-note', `Branched at move ${last.move}${what ? ` (${what})` : ''}: the dashed path is the one kept from the run before; the triangle marks the branch point.`);
+    setText('branch-note', `Branched at move ${last.move}${what ? ` (${what})` : ''}. Dashed: the path kept from before; ▲ the branch point.`);
   }
 }

@@ -303,7 +303,7 @@ export class Renderer {
         ctx.stroke(this.shared.path);
         ctx.setLineDash([]);
       }
-      if (mark) paintBranch(ctx, ...mark, Math.max(0.42, 6 * px), px);
+      if (mark) paintBranch(ctx, ...mark, Math.max(0.3, 5 * px), px);
     });
     if (len > 1) this.drawn.add('shared');
     if (mark) this.drawn.add('branch');
