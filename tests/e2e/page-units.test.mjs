@@ -160,6 +160,12 @@ function fakeSession({ goal = 10, failReset = false } = {}) {
     s.loops = 0;
     return configs.map(view);
   };
+  s.branch = async (configs, move) => {
+    await null;
+    if (move > s.loops) throw new Error(`branch at move ${move} is past the run's moves`);
+    s.gen++;
+    return configs.map(view);
+  };
   s.current = (answer) => answer.gen === s.gen;
   s.request = async (type, payload = {}) => {
     await null;
@@ -218,15 +224,37 @@ test('the controller state machine takes commands one way and reports by events'
   assert.equal(c.state, 'found');
   assert.ok(drawn > 0);
   assert.deepEqual(states.slice(-3), ['paused', 'running', 'found']);
+  // An offer waits in `choosing`: playback and steps do nothing; cancel keeps the runs.
+  c.dispatch({ type: 'seek', point: { move: 0 } });
+  c.setState('paused');
+  const kept = c.runs;
+  assert.equal(c.dispatch({ type: 'offer', offer: { move: 1 } }), true);
+  assert.equal(c.state, 'choosing');
+  assert.deepEqual(c.offer, { move: 1 });
+  c.dispatch({ type: 'play' });
+  await c.dispatch({ type: 'stepMove' });
+  assert.equal(c.state, 'choosing');
+  assert.equal(c.dispatch({ type: 'cancel' }), true);
+  assert.deepEqual([c.state, c.offer, c.runs], ['paused', null, kept]);
+  // A branch refused: a message, the runs as they were; a branch made: fresh runs, paused.
+  const said = [];
+  c.on('message', (m) => said.push(m));
+  c.dispatch({ type: 'offer', offer: { move: 99 } });
+  assert.deepEqual(await c.dispatch({ type: 'branch', configs: [{ n: 7 }], move: 99 }), { ok: false, error: "branch at move 99 is past the run's moves" });
+  assert.deepEqual([c.state, c.runs, said], ['paused', kept, ["branch at move 99 is past the run's moves"]]);
+  assert.deepEqual(await c.dispatch({ type: 'branch', configs: [{ n: 7 }], move: 2 }), { ok: true });
+  assert.deepEqual(c.runs.map((r) => r.config), [{ n: 7 }]);
+  c.settle();
+  c.setState('found');
   assert.throws(() => c.setState('running'), /invalid state transition/);
   assert.throws(() => c.dispatch({ type: 'warp' }), /unknown command/);
   // Stepping a finished run does nothing.
   await c.dispatch({ type: 'stepMove' });
   assert.equal(c.state, 'found');
-  // Toggling a finished run replays the same configs.
+  // Toggling a finished run replays the same configs (the branch's).
   c.dispatch({ type: 'toggle' });
   await c.whenReady();
-  assert.deepEqual(session.resets.at(-1), [cfg]);
+  assert.deepEqual(session.resets.at(-1), [{ n: 7 }]);
   // A reset overtaken by a newer one leaves only the newer runs.
   const older = c.dispatch({ type: 'reset', configs: [cfg] });
   const newer = c.dispatch({ type: 'reset', configs: [{ n: 5 }] });
