@@ -23,7 +23,9 @@ use crate::searchers::walks::policy::PolicyKind;
 use std::sync::Mutex;
 use wasm_bindgen::prelude::*;
 
+mod branch;
 mod teach;
+pub use branch::branch_check;
 pub use teach::{config_differences, run_paired_trial, summarize_paired};
 
 static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
@@ -652,9 +654,11 @@ impl RaceHandle {
     }
 
     /// What stays fixed for each run: `[{ label, config, searcher, deliberates,
-    /// help, n, start, target, optimal, lower_bound, layer_names }]`; `lower_bound`
-    /// is the bound on any searcher's mean steps (`bound::lower_bound_capped`),
-    /// `layer_names` the names of the layers the run can draw.
+    /// help, n, start, target, optimal, lower_bound, layer_names, lineage }]`;
+    /// `lower_bound` is the bound on any searcher's mean steps
+    /// (`bound::lower_bound_capped`), `layer_names` the names of the layers
+    /// the run can draw, `lineage` where it branched (`[{ move, config }]`,
+    /// oldest first: the moves kept and the parent's config).
     ///
     /// # Errors
     /// None in practice: every run's config was validated by the constructor.
@@ -672,12 +676,14 @@ impl RaceHandle {
             optimal: u32,
             lower_bound: f64,
             layer_names: Vec<&'static str>,
+            lineage: &'a [crate::run::race::BranchPoint],
         }
         let runs: Vec<Run> = self
             .race
             .runs()
             .iter()
-            .map(|r| {
+            .zip(self.race.lineage())
+            .map(|(r, lineage)| {
                 let info = r.searcher_info();
                 Ok(Run {
                     label: r.config().label(),
@@ -692,6 +698,7 @@ impl RaceHandle {
                     lower_bound: crate::analysis::bound::lower_bound_capped(r.config())
                         .map_err(err)?,
                     layer_names: view::layers_of(r),
+                    lineage,
                 })
             })
             .collect::<Result<_, JsError>>()?;

@@ -15,6 +15,9 @@ use crate::searchers::mcts::search::{BELIEF, KEEP_TRACES, LOOPS, MS};
 use crate::searchers::phase::{PhaseKind, PhaseRecord, PhaseStep};
 use crate::searchers::tree_export::{TreeError, TreeExport, TreeQuery};
 use crate::searchers::{MoveScores, Planning, Searcher, SearcherInfo, Setup, World};
+use std::sync::Arc;
+
+pub use crate::run::trial_result::{TrialResult, TRIAL_FIELDS};
 
 /// Where an episode stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -26,67 +29,6 @@ pub enum Status {
     Found,
     /// The step cap ended the episode first (a failure).
     Capped,
-}
-
-/// The result of one trial.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct TrialResult {
-    /// Real moves made.
-    pub steps: u32,
-    /// Fewest moves that would have detected the target.
-    pub optimal: u32,
-    /// True when the target was detected.
-    pub found: bool,
-    /// The target cell.
-    pub target: u32,
-    /// Rollout counters over the whole episode.
-    pub counters: Counters,
-}
-
-/// How many numbers [`TrialResult::fields`] gives.
-pub const TRIAL_FIELDS: usize = 7;
-
-impl TrialResult {
-    /// steps / optimal, `None` when optimal is 0.
-    pub fn ratio(&self) -> Option<f64> {
-        (self.optimal > 0).then(|| self.steps as f64 / self.optimal as f64)
-    }
-
-    /// The result as numbers, for passing between workers:
-    /// `[steps, optimal, found (0/1), target, rollouts, rollout_steps, truncated]`.
-    pub fn fields(&self) -> [f64; TRIAL_FIELDS] {
-        [
-            self.steps as f64,
-            self.optimal as f64,
-            self.found as u8 as f64,
-            self.target as f64,
-            self.counters.rollouts as f64,
-            self.counters.rollout_steps as f64,
-            self.counters.truncated as f64,
-        ]
-    }
-
-    /// Reads [`TrialResult::fields`] back; `None` unless every number is a
-    /// non-negative integer in range.
-    pub fn from_fields(f: &[f64]) -> Option<TrialResult> {
-        let int = |v: f64, max: f64| (v >= 0.0 && v <= max && v.fract() == 0.0).then_some(v);
-        let u32max = u32::MAX as f64;
-        let u53 = 9_007_199_254_740_992.0;
-        if f.len() != TRIAL_FIELDS {
-            return None;
-        }
-        Some(TrialResult {
-            steps: int(f[0], u32max)? as u32,
-            optimal: int(f[1], u32max)? as u32,
-            found: int(f[2], 1.0)? == 1.0,
-            target: int(f[3], u32max)? as u32,
-            counters: Counters {
-                rollouts: int(f[4], u53)? as u64,
-                rollout_steps: int(f[5], u53)? as u64,
-                truncated: int(f[6], u53)? as u64,
-            },
-        })
-    }
 }
 
 /// Slices of a plan being made (about a millisecond each at N = 40) after
@@ -211,6 +153,9 @@ pub struct Episode {
     decision_rollouts: u64,
     /// The trial's index in its batch.
     index: u64,
+    /// Moves made whatever the searcher decides: a branch's shared prefix
+    /// (see `crate::run::branch`); empty for a run of its own.
+    forced: Arc<[Move]>,
 }
 
 impl Episode {
@@ -270,6 +215,7 @@ impl Episode {
             phased: None,
             decision_rollouts: 0,
             index,
+            forced: Arc::from([]),
             sensor,
             torus,
         };
@@ -461,7 +407,13 @@ impl Episode {
         self.result()
     }
 
-    fn apply(&mut self, m: Move) {
+    fn apply(&mut self, decided: Move) {
+        // In a branch's shared prefix the searcher decided, but the move
+        // made is the parent run's.
+        let m = self
+            .forced
+            .get(self.steps() as usize)
+            .map_or(decided, |&f| f);
         self.decision_rollouts = self.counters.rollouts;
         let pos = self.torus.step(self.position(), m);
         self.path.push(pos);
@@ -717,6 +669,7 @@ impl Episode {
             phased: self.phased,
             decision_rollouts: self.decision_rollouts,
             index: self.index,
+            forced: self.forced.clone(),
         })
     }
 
@@ -727,12 +680,31 @@ impl Episode {
     /// that built this run).
     pub fn restart(&self) -> Result<Episode, ParamError> {
         let mut ep = Episode::trial(&self.cfg, self.index)?;
+        ep.forced = self.forced.clone();
         if self.blind {
             ep.blind = true;
             ep.status = Status::Running;
         }
         ep.set_clock(self.budget.clock());
         Ok(ep)
+    }
+
+    /// The trial's index in its batch.
+    pub fn index(&self) -> u64 {
+        self.index
+    }
+
+    /// Makes the first `moves.len()` real moves these, whatever the
+    /// searcher decides (it still decides each, and observes the move
+    /// made); call before the first move.
+    pub(crate) fn force(&mut self, moves: Arc<[Move]>) {
+        self.forced = moves;
+    }
+
+    /// Real moves forced on the run (a branch's shared prefix; 0 for a
+    /// run of its own).
+    pub fn forced(&self) -> u32 {
+        self.forced.len() as u32
     }
 
     /// The clock time budgets read.

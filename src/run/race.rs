@@ -5,6 +5,7 @@
 
 use crate::config::Config;
 use crate::param::ParamError;
+use crate::run::branch::{self, BranchError};
 use crate::run::episode::{Episode, Status, TimePoint};
 use crate::run::timeline::{BackUnit, SeekError, Timeline, TimelineMemory, DEFAULT_CAP_BYTES};
 use crate::searchers::phase::PhaseStep;
@@ -21,6 +22,32 @@ pub struct Race {
     asked: Vec<u32>,
     /// For each run, its snapshots and furthest point.
     timelines: Vec<Timeline>,
+    /// For each run, where it branched from its parents, oldest first.
+    lineage: Vec<Vec<BranchPoint>>,
+}
+
+/// Where a run branched: the move, and the configuration of the run it
+/// branched from (see [`crate::run::branch`]).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BranchPoint {
+    /// The moves shared with the parent.
+    #[serde(rename = "move")]
+    pub at: u32,
+    /// The parent's configuration.
+    pub config: Config,
+}
+
+/// For each run, the run whose moves pace it: a walker racing a run that
+/// deliberates.
+fn pacers(runs: &[Episode]) -> Vec<Option<usize>> {
+    let deliberates: Vec<bool> = runs.iter().map(|r| r.searcher_info().deliberates).collect();
+    (0..runs.len())
+        .map(|i| {
+            (!deliberates[i])
+                .then(|| (0..runs.len()).find(|&j| j != i && deliberates[j]))
+                .flatten()
+        })
+        .collect()
 }
 
 /// How many runs a race holds at most.
@@ -44,25 +71,82 @@ impl Race {
             .iter()
             .map(Episode::new)
             .collect::<Result<Vec<_>, _>>()?;
-        let deliberates: Vec<bool> = runs.iter().map(|r| r.searcher_info().deliberates).collect();
-        let pacer = (0..runs.len())
-            .map(|i| {
-                (!deliberates[i])
-                    .then(|| (0..runs.len()).find(|&j| j != i && deliberates[j]))
-                    .flatten()
-            })
-            .collect();
+        let pacer = pacers(&runs);
         let asked = vec![0; runs.len()];
         let timelines = runs
             .iter()
             .map(|r| Timeline::new(r, DEFAULT_CAP_BYTES))
             .collect();
         Ok(Race {
+            lineage: vec![Vec::new(); runs.len()],
             runs,
             pacer,
             asked,
             timelines,
         })
+    }
+
+    /// Branches every run at move `at` of the first run's timeline (see
+    /// [`crate::run::branch`]): run i continues with `configs[i]` from
+    /// where it stands at point (`at`, loop 0), its path so far kept; a
+    /// run that had not reached `at` (a walker paced behind, or one that
+    /// ended) branches where it ended. The branched runs stand at that
+    /// point; their timelines reach back to move 0.
+    ///
+    /// # Errors
+    /// A [`BranchError`]: a count of configs other than the runs', a
+    /// world parameter changed, `at` past the first run's furthest move,
+    /// or a timed run (it does not replay). Nothing changes then.
+    pub fn branch(&mut self, configs: &[Config], at: u32) -> Result<(), BranchError> {
+        if configs.len() != self.runs.len() {
+            return Err(BranchError::Runs {
+                given: configs.len(),
+                runs: self.runs.len(),
+            });
+        }
+        let reached = self.timelines[0].end().mv;
+        if at > reached {
+            return Err(BranchError::PastEnd { at, reached });
+        }
+        let mut fresh = Vec::with_capacity(self.runs.len());
+        for (i, cfg) in configs.iter().enumerate() {
+            let replayed = match self.runs[i].steps() == at {
+                true => None,
+                false => Some(
+                    self.timelines[i]
+                        .replay_at_most(&self.runs[i], TimePoint::at(at, 0))
+                        .map_err(|e| BranchError::Seek(e.to_string()))?,
+                ),
+            };
+            let parent = replayed.as_ref().unwrap_or(&self.runs[i]);
+            let shared = parent.steps();
+            let mut ep = branch::forced(parent, shared, cfg)?;
+            let mut tl = Timeline::new(&ep, DEFAULT_CAP_BYTES);
+            while ep.steps() < shared && ep.step_move() == Status::Running {
+                tl.note(&ep);
+            }
+            tl.note(&ep);
+            ep.forget_phase();
+            let from = BranchPoint {
+                at: shared,
+                config: parent.config().clone(),
+            };
+            fresh.push((ep, tl, from));
+        }
+        for (i, (ep, tl, from)) in fresh.into_iter().enumerate() {
+            self.asked[i] = ep.steps();
+            self.runs[i] = ep;
+            self.timelines[i] = tl;
+            self.lineage[i].push(from);
+        }
+        self.pacer = pacers(&self.runs);
+        Ok(())
+    }
+
+    /// For each run, where it branched from its parents, oldest first
+    /// (empty for a run of its own).
+    pub fn lineage(&self) -> &[Vec<BranchPoint>] {
+        &self.lineage
     }
 
     /// The runs.

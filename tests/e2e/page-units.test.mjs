@@ -31,7 +31,7 @@ test('no parameters give the default demo', () => {
   assert.equal(config.loops, 100);
   assert.equal(config.c, Math.SQRT2);
   assert.equal(config.seed, '1');
-  assert.deepEqual(view, { speed: 10, autoplay: true, vs: '', show: '', at: '', tree: '', lesson: '', race: '' });
+  assert.deepEqual(view, { speed: 10, autoplay: true, vs: '', show: '', at: '', branch: '', tree: '', lesson: '', race: '' });
 });
 
 test('every parameter round-trips through the URL', () => {
@@ -41,7 +41,7 @@ test('every parameter round-trips through the URL', () => {
   ];
   const { config, errors } = engine.parseParams(pairs);
   assert.deepEqual(errors, []);
-  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', tree: 'b.best', lesson: 'theorem2', race: 'nsarw' };
+  const view = { speed: 'max', autoplay: false, vs: 'rollout=levy c=0.5', show: 'visits,path', at: '12.3.rollout', branch: '4:c=0.5 loops=30/9', tree: 'b.best', lesson: 'theorem2', race: 'nsarw' };
   const back = read(write(config, view));
   assert.deepEqual(back.messages, []);
   assert.deepEqual(back.config, config);
@@ -52,7 +52,7 @@ test('every parameter round-trips through the URL', () => {
   // Defaults are left out, except the seed; the full form names every parameter.
   assert.equal(write(read('').config, read('').view), 'seed=1');
   const full = new URLSearchParams(write(config, view, { full: true }));
-  for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'vs', 'show', 'at', 'tree', 'lesson', 'race']) assert.ok(full.has(p), p);
+  for (const p of [...schema.params.map((q) => q.key), 'speed', 'autoplay', 'vs', 'show', 'at', 'branch', 'tree', 'lesson', 'race']) assert.ok(full.has(p), p);
   assert.deepEqual(read(full.toString()).config, config);
 });
 
@@ -76,7 +76,7 @@ test('invalid values name the parameter and the allowed range, and the default i
   const bad = {
     n: '2', prior: 'cauchy', sigma: '-1', rv: 'NaN', start: '0,5', searcher: 'astar', variant: 'forest',
     rollout: 'bfs', belief: 'maybe', loops: '0', ms: '-5', c: 'inf', mu: '1', final: 'best',
-    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me', step_cap: '0', paint: '*', at: '1.x', show: 'Visits<b>', tree: 'worst', lesson: 'none',
+    seed: '-1', speed: 'warp', autoplay: 'perhaps', race: 'me', step_cap: '0', paint: '*', at: '1.x', branch: '3:c', show: 'Visits<b>', tree: 'worst', lesson: 'none',
   };
   const { config, view, messages } = read(new URLSearchParams(bad).toString());
   const d = read('');
@@ -176,6 +176,12 @@ function fakeSession({ goal = 10, failReset = false } = {}) {
     s.loops = 0;
     return configs.map(view);
   };
+  s.branch = async (configs, move) => {
+    await null;
+    if (move > s.loops) throw new Error(`branch at move ${move} is past the run's moves`);
+    s.gen++;
+    return configs.map(view);
+  };
   s.current = (answer) => answer.gen === s.gen;
   s.request = async (type, payload = {}) => {
     await null;
@@ -234,15 +240,37 @@ test('the controller state machine takes commands one way and reports by events'
   assert.equal(c.state, 'found');
   assert.ok(drawn > 0);
   assert.deepEqual(states.slice(-3), ['paused', 'running', 'found']);
+  // An offer waits in `choosing`: playback and steps do nothing; cancel keeps the runs.
+  c.dispatch({ type: 'seek', point: { move: 0 } });
+  c.setState('paused');
+  const kept = c.runs;
+  assert.equal(c.dispatch({ type: 'offer', offer: { move: 1 } }), true);
+  assert.equal(c.state, 'choosing');
+  assert.deepEqual(c.offer, { move: 1 });
+  c.dispatch({ type: 'play' });
+  await c.dispatch({ type: 'stepMove' });
+  assert.equal(c.state, 'choosing');
+  assert.equal(c.dispatch({ type: 'cancel' }), true);
+  assert.deepEqual([c.state, c.offer, c.runs], ['paused', null, kept]);
+  // A branch refused: a message, the runs as they were; a branch made: fresh runs, paused.
+  const said = [];
+  c.on('message', (m) => said.push(m));
+  c.dispatch({ type: 'offer', offer: { move: 99 } });
+  assert.deepEqual(await c.dispatch({ type: 'branch', configs: [{ n: 7 }], move: 99 }), { ok: false, error: "branch at move 99 is past the run's moves" });
+  assert.deepEqual([c.state, c.runs, said], ['paused', kept, ["branch at move 99 is past the run's moves"]]);
+  assert.deepEqual(await c.dispatch({ type: 'branch', configs: [{ n: 7 }], move: 2 }), { ok: true });
+  assert.deepEqual(c.runs.map((r) => r.config), [{ n: 7 }]);
+  c.settle();
+  c.setState('found');
   assert.throws(() => c.setState('running'), /invalid state transition/);
   assert.throws(() => c.dispatch({ type: 'warp' }), /unknown command/);
   // Stepping a finished run does nothing.
   await c.dispatch({ type: 'stepMove' });
   assert.equal(c.state, 'found');
-  // Toggling a finished run replays the same configs.
+  // Toggling a finished run replays the same configs (the branch's).
   c.dispatch({ type: 'toggle' });
   await c.whenReady();
-  assert.deepEqual(session.resets.at(-1), [cfg]);
+  assert.deepEqual(session.resets.at(-1), [{ n: 7 }]);
   // A reset overtaken by a newer one leaves only the newer runs.
   const older = c.dispatch({ type: 'reset', configs: [cfg] });
   const newer = c.dispatch({ type: 'reset', configs: [{ n: 5 }] });

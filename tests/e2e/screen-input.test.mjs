@@ -84,13 +84,17 @@ test('on a phone a tap on the board inspects it, and a swipe on the board scroll
   });
 });
 
-test('an edit while paused leaves the run paused, at move 0, with the same seed', { timeout: 120_000 }, async () => {
+test('an edit while paused leaves the run paused (Restart: at move 0, with the same seed)', { timeout: 120_000 }, async () => {
   await withDevice('1366x768', '?seed=77&speed=10', async (page) => {
     await page.waitForFunction(() => window.torusTest.runs()[0].steps >= 3, null, { timeout: 60_000 });
     await page.click('#play');
     assert.equal(await state(page), 'paused');
     const resets = await page.evaluate(() => window.torusTest.resets());
     await setParam(page, 'loops', '30');
+    // Paused after move 0, the edit waits for a choice (tests/e2e/branch.test.mjs has the branch).
+    await page.waitForFunction(() => window.torusTest.state() === 'choosing', null, { timeout: 10_000 });
+    assert.equal(await page.evaluate(() => window.torusTest.resets()), resets);
+    await page.click('#branch-restart');
     await page.waitForFunction((r) => window.torusTest.resets() > r, resets);
     await page.evaluate(() => window.torusTest.ready());
     await page.waitForTimeout(500);

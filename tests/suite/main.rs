@@ -7,6 +7,7 @@
 mod common;
 
 mod bound;
+mod branch;
 mod build_script;
 mod calibration;
 mod cli;

@@ -207,3 +207,43 @@ fn paired_trials_share_targets_and_summarise() {
         "{e}"
     );
 }
+
+#[wasm_bindgen_test]
+fn branching_keeps_the_path_so_far_and_names_bad_values() {
+    let mut r = race(CONFIG);
+    for _ in 0..6 {
+        r.step_move();
+    }
+    let before = js_sys::Array::from(&path(&r));
+    let changed = r#"{"n":16,"sigma":3,"loops":10,"variant":"tree","seed":"4","c":0.3}"#;
+    let world = r#"{"n":17,"sigma":3,"loops":10,"variant":"tree","seed":"4","c":0.3}"#;
+    assert!(ok(facade::branch_check(js(CONFIG), js(changed))).is_none());
+    let why = ok(facade::branch_check(js(CONFIG), js(world))).unwrap();
+    assert!(
+        why.starts_with("n cannot change in a branch (16 → 17)"),
+        "{why}"
+    );
+    // Bad values name themselves and the range; the runs stay as they were.
+    for (configs, at, words) in [
+        (format!("[{world}]"), 3.0, "n cannot change"),
+        (format!("[{changed}]"), 9.0, "allowed moves 0 to 6"),
+        (
+            format!("[{changed}]"),
+            1.5,
+            "must be an integer in 0..=4294967295, got 1.5",
+        ),
+        (format!("[{changed},{changed}]"), 3.0, "2 given for 1 runs"),
+    ] {
+        let e = message(r.branch(js(&configs), at).unwrap_err());
+        assert!(e.contains(words), "{configs} at {at}: {e}");
+        assert!(same(&path(&r), &before), "{configs} at {at} moved the run");
+    }
+    let runs = js_sys::Array::from(&ok(r.branch(js(&format!("[{changed}]")), 3.0)));
+    let lineage = js_sys::Array::from(&get(&runs.get(0), "lineage"));
+    assert_eq!(lineage.length(), 1);
+    assert_eq!(num(&lineage.get(0), "move"), 3.0);
+    assert_eq!(num(&get(&lineage.get(0), "config"), "c"), 2.0_f64.sqrt());
+    assert!(same(&path(&r), &before.slice(0, 4)));
+    let t = ok(r.timeline());
+    assert_eq!((num(&t, "move"), num(&t, "loop")), (3.0, 0.0));
+}

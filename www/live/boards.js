@@ -166,6 +166,7 @@ export class Boards {
       intent: opts.intent && running ? run.intent : null,
       decision: opts.arrows && f.decision && running ? { visits: f.decision.children.map((c) => c.selected), leading: f.decision.leading } : null,
       selected: i === 0 ? this.selected : -1,
+      branchAt: opts.path ? run.branchAt : -1,
       treeLine: running ? (i === this.treeBoard && this.treeLine) || loop?.line || null : null,
       grid: opts.grid,
       tiling: opts.tiling,

@@ -5,8 +5,9 @@
 // for the next frame of the search and hands the latest one to its 'frame'
 // listeners, so the page's thread only draws. It holds no game logic.
 //
-// States: idle | running | paused | found | capped | error, mirrored to
-// document.body.dataset.state for tests.
+// States: idle | running | paused | choosing | found | capped | error,
+// mirrored to document.body.dataset.state for tests. `choosing`: paused, with
+// an edit offered as a branch or a restart (`offer` holds it) until one is chosen.
 //
 // Commands (dispatch({ type, ... })):
 //   reset { configs, autoplay, paused }  fresh runs from engine configs; resolves once they
@@ -19,6 +20,12 @@
 //   back { unit }                one phase | loop | move back (seek and back pause first, and bring
 //                                a found or capped run back to paused; a bad point leaves the runs
 //                                as they were and resolves to { ok: false, error })
+//   offer { offer }              paused → choosing: an edit waits for a choice (`offer`: the
+//                                caller's { config, move, ... }, held until then)
+//   cancel                       choosing → paused: the edit dropped, the runs as they were
+//   branch { configs, move }     the runs branched at `move` (made first if not reached) with new
+//                                configs, paused there; resolves to { ok } or { ok: false, error }
+//                                (then a `message`, and the runs as they were)
 //   speed { speed }              loops per frame, or 'max'
 //   view { view }                what frames carry: { layers: [layer requests], traces: bool }
 //   redraw                       draw again with a fresh frame (view options changed)
@@ -36,7 +43,8 @@
 const TRANSITIONS = {
   idle: ['running', 'paused', 'found', 'capped', 'error', 'idle'],
   running: ['paused', 'found', 'capped', 'error', 'idle'],
-  paused: ['running', 'paused', 'found', 'capped', 'error', 'idle'],
+  paused: ['running', 'paused', 'choosing', 'found', 'capped', 'error', 'idle'],
+  choosing: ['paused', 'idle', 'error'],
   found: ['idle', 'paused', 'error'],
   capped: ['idle', 'paused', 'error'],
   error: ['idle', 'error'],
@@ -54,6 +62,7 @@ export class Controller {
     this.listeners = { state: [], runs: [], frame: [], error: [], message: [] };
     this.timeline = null;
     this.runs = [];
+    this.offer = null; // the edit waiting for a choice (state choosing)
     this.view = { layers: [], traces: false };
     this.state = 'idle';
     this.speed = 10;
@@ -103,6 +112,20 @@ export class Controller {
         return this.travel('back', { unit: cmd.unit });
       case 'advanceTo':
         return this.travel('advanceTo', { point: cmd.point });
+      case 'offer':
+        if (this.state !== 'paused' && this.state !== 'choosing') return false;
+        this.offer = cmd.offer;
+        this.setState('choosing');
+        return true;
+      case 'cancel':
+        if (this.state !== 'choosing') return false;
+        this.offer = null;
+        this.setState('paused');
+        this.redraw();
+        return true;
+      case 'branch':
+        this.ready = this.branch(cmd.configs, cmd.move);
+        return this.ready;
       case 'speed':
         this.speed = cmd.speed;
         this.send('speed', { speed: cmd.speed });
@@ -177,6 +200,7 @@ export class Controller {
   async reset(configs, autoplay = false, paused = false) {
     const ticket = ++this.resets;
     this.runs = [];
+    this.offer = null;
     if (this.state !== 'idle') this.setState('idle');
     let runs;
     try {
@@ -197,6 +221,43 @@ export class Controller {
     if (autoplay && this.isLive()) this.play();
     else if (paused && this.state === 'idle') this.setState('paused');
     return ticket === this.resets;
+  }
+
+  /**
+   * Branches the paused runs at `move` with `configs` (an offer chosen, or
+   * a link's branch). Nothing is sent for the old runs meanwhile; once the
+   * worker has branched, the fresh runs wait in `paused` with their frame.
+   * Refused, the runs stay as they were, with a `message`.
+   */
+  async branch(configs, move) {
+    if (!['paused', 'choosing'].includes(this.state) || !this.runs.length || this.stepping) {
+      return { ok: false, error: `branch: the run must be paused, not ${this.state}` };
+    }
+    const ticket = ++this.resets;
+    const old = this.runs;
+    this.offer = null;
+    if (this.state === 'choosing') this.setState('paused');
+    this.runs = [];
+    let runs;
+    try {
+      runs = await this.session.branch(configs, move);
+    } catch (err) {
+      if (ticket !== this.resets) return { ok: false, error: err.message };
+      if (err.trap) this.fail(err);
+      else {
+        this.runs = old;
+        this.emit('message', err.message);
+        this.redraw();
+      }
+      return { ok: false, error: err.message };
+    }
+    if (ticket !== this.resets) return { ok: false, error: 'branch: overtaken by a reset' };
+    this.runs = runs;
+    this.timeline = null;
+    this.emit('runs', runs);
+    if (!(await this.refresh())) return { ok: false, error: 'branch: overtaken by a reset' };
+    this.settle();
+    return { ok: true };
   }
 
   isLive() {

@@ -20,6 +20,7 @@ import { Tour } from './tour.js';
 import { updateNarration } from './panels/narrate.js';
 import { TimelineBar } from './timeline-bar.js';
 import { TreePanel } from './tree-panel.js';
+import { BranchOffer } from './branch-offer.js';
 
 /** Least time between text-panel updates while running (ms): more is unreadable and costs the canvas frames. */
 const PANEL_MS = 100;
@@ -65,6 +66,7 @@ export function bindDisplay({ engine, schema, races, controller, live, boards, v
     onLink: (text) => live.change({ view: { tree: text }, restart: false }),
   });
   controller.on('message', (text) => showMessage(text));
+  new BranchOffer({ engine, controller, live });
   const drawn = new Set(); // marks drawn since the last legend update
   let runTime = 0; // seconds spent running, the chart's x axis
   let lastTs = 0;

@@ -2,9 +2,12 @@
 // engine) and the view parameters (speed, autoplay, race), and the ONE path
 // by which they change: change() loads a painting, shows the config in the
 // form, writes the URL and restarts the runs. Every edit, preset, opened
-// experiment point, replay, race and speed goes through it.
+// experiment point, replay, race and speed goes through it. An edit made
+// while the run is paused after move 0 waits for a choice (the controller's
+// `choosing` state): a branch from that move, keeping the path so far, or a
+// restart; a change of the world (n, prior, target, …) cannot branch, and restarts.
 
-import { writeUrl, opponentConfig, pointToAt, atToPoint } from '../shared/url-state.js';
+import { writeUrl, opponentConfig, pointToAt, atToPoint, parseBranch, formatBranch } from '../shared/url-state.js';
 import { showMessage } from '../shared/ui.js';
 import { reducedMotion } from './motion.js';
 
@@ -26,6 +29,12 @@ export class LiveState {
     controller.on('error', (err) => {
       this.trapped = err instanceof WebAssembly.RuntimeError;
     });
+    // An offer left (chosen, cancelled or overtaken): the form shows the config of the runs.
+    controller.on('state', (s, prev) => {
+      if (prev === 'choosing') this.showForm(this.config);
+    });
+    // Fresh or branched runs: the URL names their branch points.
+    controller.on('runs', () => this.onUrl());
     // A run stopped at a point: the URL says where (a link reopens it there, paused).
     let at = '';
     controller.on('frame', () => {
@@ -46,18 +55,17 @@ export class LiveState {
   change({ config = this.config, view = {}, autoplay, note = '', restart = true } = {}) {
     this.config = config;
     // A link's layers and point are applied once, here; the page then keeps them.
-    const { show, at, ...rest } = view;
+    const { show, at, branch, ...rest } = view;
     this.view = { ...this.view, ...rest };
     if (show) {
       const unknown = this.viewState.applyShown(show);
       if (unknown.length) note = [note, `Unknown layers in show=: ${unknown.join(', ').slice(0, 80)} (ignored).`].filter(Boolean).join('\n');
       this.controller.dispatch({ type: 'view', view: this.viewState.frameView() });
     }
+    if (branch && restart) return this.openBranch(branch, at, note);
     if (at && restart) return this.openAt(atToPoint(at), note);
     if (view.speed !== undefined) this.controller.dispatch({ type: 'speed', speed: this.view.speed });
-    const applicable = new Set(this.engine.applicable(config));
-    if (this.paintKeys.some((k) => applicable.has(k))) this.painter.load(config);
-    this.form.sync({ text: new Map(this.engine.configParams(config, true)), applicable, preset: this.engine.presetOf(config) ?? null });
+    this.showForm(config);
     this.controls.sync(this.view);
     this.onUrl();
     if (!restart) return Promise.resolve(true);
@@ -83,10 +91,58 @@ export class LiveState {
     return answer.ok;
   }
 
-  restartPaused() {
+  restartPaused(config = this.config) {
     for (const fn of this.restarted) fn();
     showMessage('');
-    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay: false, paused: true });
+    return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(config), autoplay: false, paused: true });
+  }
+
+  /**
+   * Fresh runs rebuilt as a link's `branch` says: the first parent's run,
+   * made up to the first branch move and branched there, and so on, the
+   * last branch with this config; then paused at `at`. A bad value leaves
+   * this config's own run at its start, with the engine's message.
+   */
+  async openBranch(text, at, note) {
+    const levels = parseBranch(text);
+    const fail = async (why) => {
+      await this.restartPaused();
+      showMessage([note, `Could not open the branch branch=${text.slice(0, 60)}: ${why}. Showing this configuration's own run from move 0.`].filter(Boolean).join('\n'));
+      return false;
+    };
+    let parents;
+    try {
+      parents = levels.map((l) => l.pairs.reduce((c, [k, v]) => this.engine.setParam(c, k, v), this.config));
+    } catch (err) {
+      return fail(err.message);
+    }
+    this.showForm(this.config);
+    this.last = { autoplay: false, paused: true };
+    if (this.controller.state !== 'idle') this.controller.setState('idle');
+    if (!(await this.restartPaused(parents[0]))) return false;
+    for (const [k, { move }] of levels.entries()) {
+      const answer = await this.controller.dispatch({ type: 'branch', configs: this.runConfigs(parents[k + 1] ?? this.config), move });
+      if (!answer.ok) return fail(answer.error);
+    }
+    const answer = at ? await this.controller.dispatch({ type: 'advanceTo', point: atToPoint(at) }) : { ok: true };
+    if (note || !answer.ok) showMessage([note, answer.ok ? '' : `Could not open the run at at=${at}: ${answer.error}`].filter(Boolean).join('\n'));
+    this.onUrl();
+    return answer.ok;
+  }
+
+  /** The runs' branch points as a link's `branch` ('' for runs of their own). */
+  branchText() {
+    const run = this.controller.runs[0];
+    if (!run?.lineage?.length) return '';
+    const changes = (parent) => this.engine.configDifferences(run.config, parent).filter((d) => d.key !== 'keep_traces').map((d) => [d.key, d.b]);
+    return formatBranch(run.lineage.map((p) => ({ move: p.move, pairs: changes(p.config) })));
+  }
+
+  /** Shows `config` in the form (and its painting). */
+  showForm(config) {
+    const applicable = new Set(this.engine.applicable(config));
+    if (this.paintKeys.some((k) => applicable.has(k))) this.painter.load(config);
+    this.form.sync({ text: new Map(this.engine.configParams(config, true)), applicable, preset: this.engine.presetOf(config) ?? null });
   }
 
   /** Where a stopped run stands, as a link's `at` ('' when running, or at the start). */
@@ -110,7 +166,53 @@ export class LiveState {
         return Promise.resolve(false);
       }
     }
-    return this.change({ config });
+    return this.propose(config);
+  }
+
+  /**
+   * An edited config. Paused after move 0, it waits for a choice (an offer:
+   * branch from the move shown, or restart) when only the searcher's
+   * parameters changed, and restarts with a note when the world changed
+   * (the engine's branchCheck says why); otherwise it restarts as any change.
+   */
+  propose(config) {
+    const c = this.controller;
+    const move = c.timeline?.move ?? 0;
+    if (!['paused', 'choosing'].includes(c.state) || move === 0) return this.change({ config });
+    const from = c.offer?.from ?? this.config;
+    const same = (a, b) => JSON.stringify(this.engine.configParams(a, true)) === JSON.stringify(this.engine.configParams(b, true));
+    if (same(from, config)) {
+      c.dispatch({ type: 'cancel' });
+      return Promise.resolve(true);
+    }
+    const why = this.engine.branchCheck(from, config);
+    if (why) return this.change({ config, note: `Restarted from move 0: ${why}.` });
+    c.dispatch({ type: 'offer', offer: { from, config, move } });
+    this.showForm(config);
+    return Promise.resolve(true);
+  }
+
+  /** The offered edit as a branch from its move: the path so far kept, the new setting from there. */
+  async chooseBranch() {
+    const offer = this.controller.offer;
+    if (!offer) return false;
+    this.config = offer.config;
+    const answer = await this.controller.dispatch({ type: 'branch', configs: this.runConfigs(), move: offer.move });
+    if (!answer.ok) this.config = offer.from;
+    this.showForm(this.config);
+    this.onUrl();
+    return answer.ok;
+  }
+
+  /** The offered edit as a restart from move 0 (paused, as the run was). */
+  chooseRestart() {
+    const offer = this.controller.offer;
+    return offer ? this.change({ config: offer.config }) : Promise.resolve(false);
+  }
+
+  /** Drops the offered edit: the run and the form as they were. */
+  cancelOffer() {
+    this.controller.dispatch({ type: 'cancel' });
   }
 
   /** An edit that puts an empty painting to use (prior=paint) starts from a blob in the middle; null if that does not help. */
@@ -142,7 +244,7 @@ export class LiveState {
 
   /** The live view's query: only what differs from the defaults (and the seed), or with `full` everything. */
   query({ full = false } = {}) {
-    const view = { ...this.view, show: this.viewState.shown(), at: this.at() };
+    const view = { ...this.view, show: this.viewState.shown(), at: this.at(), branch: this.branchText() };
     return writeUrl(this.engine, this.config, view, { full, races: this.races });
   }
 
@@ -151,9 +253,9 @@ export class LiveState {
    * (the race option's searcher, then the `vs` changes: any parameters),
    * keeping the traces the view draws.
    */
-  runConfigs() {
-    this.kept = this.viewState.traceCount(this.config.keep_traces);
-    const main = this.engine.setParam(this.config, 'keep_traces', String(this.kept));
+  runConfigs(config = this.config) {
+    this.kept = this.viewState.traceCount(config.keep_traces);
+    const main = this.engine.setParam(config, 'keep_traces', String(this.kept));
     const opponent = this.opponent(main);
     return opponent ? [main, opponent] : [main];
   }
@@ -187,7 +289,7 @@ export class LiveState {
     if (this.controller.state !== 'error') showMessage('');
     // A reset under way (state idle) counts as what it will become.
     const s = this.controller.state;
-    const paused = s === 'paused' || (s === 'idle' && this.last.paused);
+    const paused = s === 'paused' || s === 'choosing' || (s === 'idle' && this.last.paused);
     this.last = { autoplay, paused };
     return this.controller.dispatch({ type: 'reset', configs: this.runConfigs(), autoplay, paused });
   }

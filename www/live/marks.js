@@ -37,6 +37,8 @@ export const COLORS = {
 export const MARKS = {
   searcher: ['searcher', 'where the searcher stands (a halo keeps it visible at any N)'],
   path: ['path', 'the cells the searcher has walked'],
+  shared: ['shared path', 'dashed: the moves this run kept from the run it branched from'],
+  branch: ['branch point', 'the move where this run branched off with its new setting'],
   start: ['start', 'the cell the searcher started from'],
   target: ['target', 'the hidden target (shown once found, or with Reveal target)'],
   practice: ['practice target', 'the target the newest imagined search looked for'],
@@ -108,6 +110,23 @@ export function paintPulse(ctx, x, y, h, t, px) {
   rimmed(ctx, INK.target, 2.5, px);
   ctx.globalAlpha = 1;
 }
+
+/** The branch point: a filled triangle pointing up, rimmed. */
+export function paintBranch(ctx, x, y, h, px) {
+  ctx.beginPath();
+  ctx.moveTo(x, y - 1.15 * h);
+  ctx.lineTo(x + h, y + 0.75 * h);
+  ctx.lineTo(x - h, y + 0.75 * h);
+  ctx.closePath();
+  ctx.fillStyle = INK.white;
+  ctx.fill();
+  ctx.strokeStyle = COLORS.rim;
+  ctx.lineWidth = 1.5 * px;
+  ctx.stroke();
+}
+
+/** The dashes over a shared path (the path is drawn under them). */
+export const SHARED_DASH = 'rgba(16,20,24,0.9)';
 
 /** The practice target: a diamond outline. */
 export function paintPractice(ctx, x, y, h, px) {
@@ -214,6 +233,18 @@ const line = (ctx, color, width, dash = []) => {
 const ICONS = {
   searcher: (ctx) => paintSearcher(ctx, 14, 8, 3.5, 1),
   path: (ctx) => line(ctx, COLORS.path, 2.5),
+  shared: (ctx) => {
+    line(ctx, COLORS.path, 3);
+    ctx.beginPath();
+    ctx.moveTo(4, 8);
+    ctx.lineTo(24, 8);
+    ctx.setLineDash([3, 3]);
+    ctx.strokeStyle = SHARED_DASH;
+    ctx.lineWidth = 1.6;
+    ctx.stroke();
+    ctx.setLineDash([]);
+  },
+  branch: (ctx) => paintBranch(ctx, 14, 8, 5, 1),
   start: (ctx) => paintStart(ctx, 14, 8, 4.5, 1),
   target: (ctx) => paintTarget(ctx, 14, 8, 3.5, 1),
   practice: (ctx) => paintPractice(ctx, 14, 8, 5, 1),

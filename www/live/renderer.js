@@ -9,7 +9,7 @@
 // wrap-aware (paths.js). Each frame records which marks it drew (`drawn`),
 // so the legend can be held to naming all of them.
 
-import { COLORS, hatchTile, paintArrow, paintPractice, paintPulse, paintSearcher, paintSelected, paintStart, paintTarget, paintVision, INK } from './marks.js';
+import { COLORS, SHARED_DASH, hatchTile, paintArrow, paintBranch, paintPractice, paintPulse, paintSearcher, paintSelected, paintStart, paintTarget, paintVision, INK } from './marks.js';
 import { PathLayer, appendWrapPath, cellXY, forEachTile } from './paths.js';
 import { drawTrail } from './trails.js';
 
@@ -124,6 +124,7 @@ export class Renderer {
    *   rv, trails: [{ cells, alpha }] (oldest first), practice (−1 = none),
    *   intent: Uint32Array | null (a planner's path ahead, from the position),
    *   decision: { visits: [4], leading: [4 bools] } | null, selected (−1 = none),
+   *   branchAt: the moves shared with the run this one branched from (−1: none),
    *   grid: bool, tiling: bool
    * }
    * Returns true while the path is not drawn to its end yet (a long path after
@@ -176,6 +177,7 @@ export class Renderer {
     ctx.lineJoin = 'round';
     this.drawTrails(scene, px);
     const pending = this.drawPath(scene, gridPx, tiles);
+    this.drawBranch(scene, eachTile, px);
     this.drawIntent(scene, eachTile, px);
     this.drawTreeLine(scene, eachTile, px);
     // Once found, the target (and its pulse) goes over the searcher beside it.
@@ -275,7 +277,38 @@ export class Renderer {
     return pending;
   }
 
-  /** A planner's path ahead: dashed, over the path it continues. */
+  /**
+   * A branched run: dashes over the path it shares with the run it
+   * branched from, and a triangle at the branch point (once reached).
+   */
+  drawBranch(scene, eachTile, px) {
+    const at = scene.branchAt ?? -1;
+    if (at < 0 || !scene.path || !scene.pathLen) return;
+    const ctx = this.ctx;
+    const n = scene.n;
+    const len = Math.min(at + 1, scene.pathLen);
+    const c = this.shared;
+    if (c?.key !== scene.pathKey || c.len !== len || c.n !== n) {
+      const p = new Path2D();
+      if (len > 1) appendWrapPath(p, scene.path, 0, len, n);
+      this.shared = { key: scene.pathKey, len, n, path: p };
+    }
+    const lw = Math.max(2 * this.dpr, Math.min(this.cell * 0.28, 6 * this.dpr)) / this.cell;
+    const mark = at < scene.pathLen ? cellXY(scene.path[at], n).map((v) => v + 0.5) : null;
+    eachTile(() => {
+      if (len > 1) {
+        ctx.setLineDash([Math.max(3 * px, 0.3), Math.max(3 * px, 0.3)]);
+        ctx.strokeStyle = SHARED_DASH;
+        ctx.lineWidth = 0.55 * lw;
+        ctx.stroke(this.shared.path);
+        ctx.setLineDash([]);
+      }
+      if (mark) paintBranch(ctx, ...mark, Math.max(0.3, 5 * px), px);
+    });
+    if (len > 1) this.drawn.add('shared');
+    if (mark) this.drawn.add('branch');
+  }
+
   /** The tree node in focus: its moves from the searcher, dotted white, ending in a ring. */
   drawTreeLine(scene, eachTile, px) {
     const cells = scene.treeLine;

@@ -32,6 +32,8 @@ export class RunView {
     this.traces = [];
     this.practice = -1;
     this.intent = null; // Uint32Array: the position, then the cells a planner means to enter
+    // Where this run branched from the run before it (the engine's lineage), or −1.
+    this.branchAt = info.lineage?.length ? info.lineage.at(-1).move : -1;
   }
 
   /**
@@ -176,6 +178,19 @@ export class SearchSession {
     await this.ready;
     const gen = ++this.gen;
     const answer = await this.request('reset', { gen, configs });
+    return answer.runs.map((info) => new RunView(info));
+  }
+
+  /**
+   * Branches the runs at `move` with new engine configs; resolves to their
+   * RunViews. The generation moves on only once the worker has branched
+   * (it answers in order, so every answer before this one is the old
+   * runs'); a refusal rejects and leaves the runs and generation as they were.
+   */
+  async branch(configs, move) {
+    const gen = this.gen + 1;
+    const answer = await this.request('branch', { gen, configs, move });
+    this.gen = gen;
     return answer.runs.map((info) => new RunView(info));
   }
 

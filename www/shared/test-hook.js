@@ -3,7 +3,7 @@
 // and forwards commands; nothing in the page depends on it.
 //
 //   ready()            resolves (to true when runs exist) once the newest reset has finished
-//   state()            the controller's state: idle | running | paused | found | capped | error
+//   state()            the controller's state: idle | running | paused | choosing | found | capped | error
 //   speed()            the controller's speed: loops per frame, or 'max'
 //   runs()             a snapshot per run: { label, config, searcher, deliberates, n, start,
 //                      target, optimal, status, steps, revisits, pathLen, work, rolloutSteps, scores,
@@ -16,6 +16,8 @@
 //   seek(point)        seeks to { move, loop, phase } (a 'seek' command); resolves to { ok, error }
 //                      once the page has drawn that point
 //   back(unit)         one phase | loop | move back, as seek
+//   offer()            the edit waiting for a choice (state choosing): { move, from, config }, or null
+//   lineage(i = 0)     run i's branch points (the engine's [{ move, config }], oldest first)
 //   tree(query, run)   run `run`'s tree of the decision (Race.tree: { shape, nodes: [{ id, parent,
 //                      move, visits, value, mean, explore, uct, … }], total_nodes }; mean + explore =
 //                      uct, the UCT split its parent's selection weighs, null at the root), or null
@@ -112,6 +114,8 @@ export function installTestHook({ controller, engine, batch, experiments, showVi
     timeline: () => (controller.timeline ? structuredClone(controller.timeline) : null),
     seek: (point) => shown(controller.dispatch({ type: 'seek', point })),
     back: (unit) => shown(controller.dispatch({ type: 'back', unit })),
+    offer: () => (controller.offer ? structuredClone(controller.offer) : null),
+    lineage: (i = 0) => structuredClone(controller.runs[i]?.lineage ?? []),
     tree: async (query = {}, run = 0) => (await controller.dispatch({ type: 'request', request: 'tree', payload: { run, query } }))?.tree ?? null,
     narration: () => document.getElementById('narration').textContent,
     treeView: (i = 1) => treeViewState(tree, i),

@@ -88,6 +88,12 @@ export function viewSpecs(races) {
       parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
       text: String,
     },
+    branch: {
+      def: '',
+      help: 'where the run branched: MOVE, or MOVE:key=value … naming what the run it branched from had otherwise (e.g. 12:c=2), oldest first, joined by /',
+      parse: (s) => (s === '' || parseBranch(s) ? s : undefined),
+      text: String,
+    },
     tree: {
       def: '',
       help: 'the tree view\'s focus: best (the best line) or a node id, or empty for the whole tree; in a race b, b.best or b.ID for board B\'s tree',
@@ -157,6 +163,30 @@ export function atToPoint(at) {
   if (!at) return null;
   const [move, loop = '0', phase = null] = at.split('.');
   return { move: Number(move), loop: Number(loop), phase };
+}
+
+/**
+ * A link's `branch` as levels `[{ move, pairs }]`, oldest first: the run
+ * shares its first `move` moves with the run it branched from, whose
+ * config is this one with `pairs` set ("12:c=2 loops=50/30:c=1"). Null
+ * when the text is not of that form (the engine checks the values).
+ */
+export function parseBranch(text) {
+  if (typeof text !== 'string' || !text || text.length > 800) return null;
+  const levels = [];
+  for (const level of text.split('/')) {
+    const m = /^(\d{1,9})(?::([\w.,:=+ -]*))?$/.exec(level.trim());
+    if (!m) return null;
+    const pairs = opponentPairs(m[2]?.trim().replace(/\s+/g, ' '));
+    if (pairs.some(([k, v]) => !k || v === '')) return null;
+    levels.push({ move: Number(m[1]), pairs });
+  }
+  return levels;
+}
+
+/** Levels `[{ move, pairs }]` as a link's `branch` (see parseBranch). */
+export function formatBranch(levels) {
+  return levels.map(({ move, pairs }) => (pairs.length ? `${move}:${pairs.map(([k, v]) => `${k}=${v}`).join(' ')}` : String(move))).join('/');
 }
 
 /** `vs` text ("key=value key=value") as [key, value] pairs. */

@@ -18,6 +18,9 @@
 //   back { unit, requests }             one phase | loop | move back; answers { frames }
 //   advanceTo { point, requests }       steps the runs forward as far as `point` (moves, loops,
 //                                       phases), then seeks it exactly; answers { frames }
+//   branch { gen, configs, move }       branches the runs at `move` (made first if not reached yet)
+//                                       with new configs (Race.branch); answers { runs }. Refused:
+//                                       the runs stay where they stood, under their generation
 //   tree { run, query }                 the decision's tree (Race.tree); treeColumns { run, query } as columns
 //                                       (a move a planner has yet to plan is made in calls of bounded
 //                                       length, answering other requests between them)
@@ -213,6 +216,26 @@ const HANDLERS = {
     }
     race.seek(p);
     return frames(msg.requests);
+  },
+  branch(msg) {
+    const { race } = st;
+    const was = race.timeline();
+    st.playing = false;
+    let advanced = false;
+    while (race.timeline().end.move < msg.move && race.running()) {
+      race.stepMove();
+      advanced = true;
+    }
+    let runs;
+    try {
+      runs = race.branch(msg.configs, msg.move);
+    } catch (err) {
+      // Refused after making moves to reach it: back where the runs stood.
+      if (advanced && !(err instanceof WebAssembly.RuntimeError)) race.seek({ move: was.move, loop: was.loop, phase: was.phase });
+      throw err;
+    }
+    st.gen = msg.gen;
+    return { runs };
   },
   tree(msg) {
     return { tree: st.race.tree(msg.run ?? 0, msg.query) };

@@ -374,7 +374,6 @@ impl<S: Stats> Mcts<S> {
             if let Some(target) = self.escape_to {
                 let m = toward(w.torus, w.pos, target, Move::Up);
                 self.generation = Some(generation);
-                self.stats.advance(m);
                 return Some(m);
             }
         }
@@ -491,7 +490,6 @@ impl<S: Stats> Mcts<S> {
                 w.rng,
             ),
         };
-        self.stats.advance(m);
         w.budget.close();
         m
     }
@@ -627,7 +625,11 @@ impl<S: Stats + 'static> Searcher for Mcts<S> {
             + self.record.heap_bytes()
     }
 
-    fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {}
+    fn observe(&mut self, _torus: &Torus, m: Move, _pos: u32) {
+        // The statistics move on by the move made, which in a branch's
+        // shared prefix may not be the one decided.
+        self.stats.advance(m);
+    }
 
     fn counts<'a>(&'a self, layer: Layer, scratch: &'a mut Vec<u32>) -> Option<&'a [u32]> {
         (layer == Layer::Visits).then(|| self.stats.visits(self.cells, scratch))

@@ -149,8 +149,13 @@ impl Searcher for Sweep {
         Some(w.torus.move_to(w.pos, to).unwrap_or(Move::Right))
     }
 
-    fn observe(&mut self, _torus: &Torus, _m: Move, _pos: u32) {
-        self.next += 1;
+    fn observe(&mut self, _torus: &Torus, _m: Move, pos: u32) {
+        // Off the sweep (a branch's shared prefix made another move):
+        // sweep again from here.
+        self.next = match self.path.get(self.next) {
+            Some(&c) if c == pos => self.next + 1,
+            _ => self.path.len(),
+        };
     }
 
     fn intent(&self) -> &[u32] {
