@@ -16,17 +16,22 @@
 //! start, sensor, seed, step cap) must be R's, or the path would not be a
 //! path of the same game.
 
+use crate::config::fields::FIELDS;
 use crate::config::Config;
 use crate::game::lattice::Move;
 use crate::param::ParamError;
 use crate::run::episode::{Episode, Status};
 use std::sync::Arc;
 
-/// The keys of the parameters that make the world a run searches in: a
-/// branch keeps them (only the searcher's parameters may change).
-pub const WORLD_PARAMS: &[&str] = &[
-    "seed", "n", "prior", "sigma", "paint", "rv", "start", "target", "known", "step_cap",
-];
+/// The keys of the parameters that make the world a run searches in: the
+/// game's own (the config's fields) but the searcher. A branch keeps them;
+/// only the searcher and its parameters may change.
+pub fn world_params() -> impl Iterator<Item = &'static str> {
+    FIELDS
+        .iter()
+        .map(|f| f.param.key)
+        .filter(|&k| k != "searcher")
+}
 
 /// Why a run cannot be branched.
 #[derive(Clone, Debug, PartialEq)]
@@ -95,7 +100,7 @@ impl From<ParamError> for BranchError {
 }
 
 /// Checks that `branch` may continue a run of `parent`: both valid, and
-/// every world parameter ([`WORLD_PARAMS`]) the same.
+/// every world parameter ([`world_params`]) the same.
 ///
 /// # Errors
 /// A [`BranchError::World`] naming the first world parameter that differs,
@@ -103,7 +108,7 @@ impl From<ParamError> for BranchError {
 pub fn check(parent: &Config, branch: &Config) -> Result<(), BranchError> {
     parent.validate()?;
     branch.validate()?;
-    for &key in WORLD_PARAMS {
+    for key in world_params() {
         let (a, b) = (parent.get(key)?, branch.get(key)?);
         if a != b {
             let key = crate::config::param(key).map_or(key, |p| p.key);
