@@ -77,6 +77,7 @@ test:
 	@$(MAKE) --no-print-directory test-workflows
 	@$(MAKE) --no-print-directory test-clippy
 	@$(MAKE) --no-print-directory test-native
+	$(call section,wait for the detached installs (scripts/setup.sh --wait))
 	@scripts/setup.sh --browser --wait
 	@$(MAKE) --no-print-directory _test-wasm-and-build
 	@$(MAKE) --no-print-directory _dist
