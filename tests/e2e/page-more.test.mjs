@@ -89,11 +89,15 @@ test("race: the paper's MCTS against the belief MCTS, both to found, on the same
 
 test("a planner draws its path ahead and the decision panel shows its scores of the four moves", { timeout: 120_000 }, async () => {
   await withApp('?searcher=horizon&n=20&sigma=3&speed=1', async (page) => {
+    // Paused as soon as it has scores and a path ahead, so the panel is read
+    // on that frame, not on one after the target was found (no move chosen).
     await page.waitForFunction(() => {
       const r = window.torusTest.runs()[0];
-      return r && r.steps >= 2 && r.scores && r.intent.length > 1;
+      const ready = r && r.steps >= 2 && r.scores && r.intent.length > 1 && r.status === 'running';
+      if (ready) window.torusTest.dispatch({ type: 'pause' });
+      return ready;
     }, null, { timeout: 60_000 });
-    // One look at the run (the search goes on between evaluations).
+    await page.evaluate(() => window.torusTest.ready());
     const [r, path] = await page.evaluate(() => [window.torusTest.runs()[0], window.torusTest.path()]);
     assert.equal(r.scores.score.length, 4);
     assert.ok(r.scores.chosen >= 0 && r.scores.chosen < 4);

@@ -12,7 +12,7 @@ import { mkdir, readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { test } from 'node:test';
 import { SHOT_DIR, canvasIsBlank, screenshot } from './harness.mjs';
-import { appServer, canvasHash, expectText, mainPath, runToEnd, state, text, useApp, viewShot, withApp } from './page-helpers.mjs';
+import { appServer, canvasHash, expectText, mainPath, runToEnd, state, text, useApp, viewShot, waitState, withApp } from './page-helpers.mjs';
 
 useApp();
 
@@ -72,9 +72,15 @@ test('the decision panel survives switching between a walker and MCTS', { timeou
     assert.match(await text(page, '#decision-note'), /does not deliberate/);
     await page.selectOption('#searcher', 'mcts');
     await page.locator('#searcher').dispatchEvent('change');
+    // Paused after a move, the change is offered as a branch: MCTS from the walker's cell.
+    await waitState(page, 'choosing');
+    await page.click('#branch-go');
+    await waitState(page, 'paused');
     await page.evaluate(() => window.torusTest.ready());
+    await expectText(page, '#steps', '1');
     await page.click('#step-loop');
-    await expectText(page, '#rollouts', '1 / 1');
+    // The branch's MCTS decided move 1 too (its 100 loops, the walker's move made), then this loop.
+    await expectText(page, '#rollouts', '1 / 101');
     assert.notEqual(await state(page), 'error', await text(page, '#message'));
     // Visits, picks and a bar in each row again.
     assert.equal(await page.locator('#decision tbody tr td:nth-child(2) span.bar').count(), 4);
