@@ -14,10 +14,15 @@ const QUERY = '?autoplay=0&n=16&sigma=3&loops=10&seed=4&variant=tree';
 
 /** Waits until the first run shows timeline point (move, loop 0) and is paused. */
 async function pausedAt(page, move) {
-  await page.waitForFunction((m) => {
-    const t = window.torusTest.timeline();
-    return document.body.dataset.state === 'paused' && t && t.move === m && t.loop === 0 && !t.phase;
-  }, move, { timeout: 30_000 });
+  await page
+    .waitForFunction((m) => {
+      const t = window.torusTest.timeline();
+      return document.body.dataset.state === 'paused' && t && t.move === m && t.loop === 0 && !t.phase;
+    }, move, { timeout: 30_000 })
+    .catch(async (e) => {
+      const seen = await page.evaluate(() => ({ state: document.body.dataset.state, timeline: window.torusTest.timeline(), message: document.getElementById('message')?.textContent, url: location.search }));
+      assert.fail(`not paused at move ${move}: ${JSON.stringify(seen)} (${e.message})`);
+    });
 }
 
 /** Sets parameter `key` in the form as a person does (its field's change event). */
@@ -147,6 +152,8 @@ test('a link holds a branched run; a bad branch in a link gets a message', { tim
     for (let i = 0; i < 3; i++) await page.click('#step-move');
     await pausedAt(page, 13);
     want = await mainPath(page);
+    // The address bar follows the run a moment later.
+    await page.waitForFunction(() => new URLSearchParams(location.search).get('at') === '13', null, { timeout: 10_000 });
     link = page.url();
     // Oldest first: what each parent had otherwise than this run.
     assert.equal(new URL(link).searchParams.get('branch'), '6:loops=10 c=1.4142135623730951/10:loops=10');
