@@ -234,11 +234,30 @@ impl Race {
     /// A [`SeekError`] naming the point and the points allowed when no run
     /// has it (the run that went furthest names its range); nothing changes.
     pub fn seek(&mut self, to: TimePoint) -> Result<(), SeekError> {
+        self.seek_each(&vec![to; self.runs.len()])
+    }
+
+    /// Moves run `i` to point `to[i]` of its own timeline, as [`Race::seek`]
+    /// does (a race stepped loop by loop leaves its runs at different
+    /// moves: a link holds each one's point).
+    ///
+    /// # Errors
+    /// As [`Race::seek`]; also a [`SeekError`] when `to` does not hold one
+    /// point per run. Nothing changes then.
+    pub fn seek_each(&mut self, to: &[TimePoint]) -> Result<(), SeekError> {
+        if to.len() != self.runs.len() {
+            return Err(SeekError::Param(crate::param::ParamError::new(
+                "seek",
+                format!("{} points", to.len()),
+                format!("one point, or one per run ({})", self.runs.len()),
+            )));
+        }
         let mut exact: Vec<Result<Episode, SeekError>> = self
             .runs
             .iter()
             .zip(&self.timelines)
-            .map(|(r, tl)| tl.replay(r, to))
+            .zip(to)
+            .map(|((r, tl), &to)| tl.replay(r, to))
             .collect();
         if exact.iter().all(Result::is_err) {
             let furthest = (0..self.runs.len())
@@ -253,7 +272,7 @@ impl Race {
         for (i, r) in exact.into_iter().enumerate() {
             landed.push(match r {
                 Ok(ep) => ep,
-                Err(_) => self.timelines[i].replay_at_most(&self.runs[i], to)?,
+                Err(_) => self.timelines[i].replay_at_most(&self.runs[i], to[i])?,
             });
         }
         for (i, ep) in landed.into_iter().enumerate() {

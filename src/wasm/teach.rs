@@ -121,16 +121,30 @@ impl RaceHandle {
     }
 
     /// Moves every run to the point `{ move, loop = 0, phase = null }` (see
-    /// `timeline`), the state reached going forward; returns `timeline()`.
+    /// `timeline`), or run i to the i-th of an array of points, the state
+    /// reached going forward; returns `timeline()`.
     ///
     /// # Errors
-    /// A bad point, or one past every run's end, names the value and the
-    /// points allowed; the runs are then left as they were.
+    /// A bad point, one past every run's end, or an array without one point
+    /// per run names the value and what is allowed; the runs are then left
+    /// as they were.
     pub fn seek(&mut self, point: JsValue) -> Result<JsValue, JsError> {
         let v: serde_json::Value = serde_wasm_bindgen::from_value(point)
             .map_err(|e| JsError::new(&format!("seek point: {e}")))?;
-        let to = point_from_json(&v).map_err(err)?;
-        self.race.seek(to).map_err(err)?;
+        match v.as_array() {
+            Some(points) => {
+                let to = points
+                    .iter()
+                    .map(point_from_json)
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(err)?;
+                self.race.seek_each(&to).map_err(err)?;
+            }
+            None => self
+                .race
+                .seek(point_from_json(&v).map_err(err)?)
+                .map_err(err)?,
+        }
         self.timeline()
     }
 

@@ -6,7 +6,7 @@ import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
-import { readUrl, writeUrl, raceOptions, readTreeView, treeViewText } from '../../www/shared/url-state.js';
+import { readUrl, writeUrl, raceOptions, readTreeView, treeViewText, pointToAt, atToPoint } from '../../www/shared/url-state.js';
 import { wrapSegments } from '../../www/live/renderer.js';
 import { Controller } from '../../www/live/controller.js';
 
@@ -96,6 +96,17 @@ test('invalid values name the parameter and the allowed range, and the default i
   assert.match(read('bogus=1').messages[0], /Unknown URL parameter "bogus"/);
   // A repeated key: the last one counts.
   assert.equal(read('n=12&n=13').config.n, 13);
+});
+
+test('a link\'s point: one for every board, or one per board when a race\'s boards stand apart', () => {
+  const at = (runs) => pointToAt({ ...runs[0], runs });
+  assert.equal(at([{ move: 2, loop: 2, phase: null }, { move: 0, loop: 12, phase: null }]), '2.2/0.12');
+  assert.equal(at([{ move: 2, loop: 2, phase: 'rollout' }, { move: 2, loop: 2, phase: 'rollout' }]), '2.2.rollout');
+  assert.equal(at([{ move: 0, loop: 0, phase: null }]), '');
+  assert.deepEqual(atToPoint('2.2/0.12'), [{ move: 2, loop: 2, phase: null }, { move: 0, loop: 12, phase: null }]);
+  assert.deepEqual(atToPoint('3'), { move: 3, loop: 0, phase: null });
+  assert.equal(read('at=2.2/0.12.select').view.at, '2.2/0.12.select');
+  for (const bad of ['1/2/3', '1/', '/1', '1.2/x']) assert.match(read(`at=${encodeURIComponent(bad)}`).messages[0] ?? '', /^Invalid at=/, bad);
 });
 
 test('a painted prior survives the URL', () => {

@@ -250,11 +250,13 @@ test('race any two configurations: titles name what differs, and a paired batch 
 
 test('in a race the tree view shows either board\'s tree: an A/B switch by keys or taps, in the link, the lattice linked to that board', { timeout: 120_000 }, async () => {
   let link;
+  let linkedWork;
   // A makes a move every 5 loops, B every 40: after 12 loops only B is still in its first decision.
   await withApp('?autoplay=0&n=16&sigma=3&loops=5&seed=4&variant=tree&vs=loops%3D40', async (page) => {
     for (let i = 0; i < 12; i++) await page.click('#step-loop');
     await page.waitForFunction(() => window.torusTest.runs()[1].work >= 12, null, { timeout: 10_000 });
     const workB = (await page.evaluate(() => window.torusTest.runs()))[1].work;
+    linkedWork = workB;
     const [treeA, treeB] = await page.evaluate(async () => [await window.torusTest.tree({}, 0), await window.torusTest.tree({}, 1)]);
     // Under `tree` a first decision's root has one visit per loop; A's kept subtree has fewer.
     assert.equal(treeB.nodes[0].visits, workB);
@@ -299,6 +301,11 @@ test('in a race the tree view shows either board\'s tree: an A/B switch by keys 
   });
   // The link reopens on B's best line; a tap on A goes back to A's tree.
   await withApp(link.slice(link.indexOf('?')), async (page) => {
+    // Once the link's point is replayed: B's tree is read there, not at move 0.
+    await page.waitForFunction((w) => {
+      const t = window.torusTest.timeline();
+      return document.body.dataset.state === 'paused' && window.torusTest.runs()[1]?.work === w && t;
+    }, linkedWork, { timeout: 30_000 });
     const bestB = await page.evaluate(() => window.torusTest.tree({ focus: 'best' }, 1));
     await page.waitForFunction((n) => {
       const t = window.torusTest.treeView();

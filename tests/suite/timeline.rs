@@ -322,3 +322,31 @@ fn stepping_back_retraces_the_states_stepped_through() {
         assert_eq!(race.runs()[0].point(), TimePoint::at(1, 0));
     }
 }
+
+#[wasm_bindgen_test(unsupported = test)]
+fn a_race_seeks_each_board_to_its_own_point() {
+    use torus_search::run::race::Race;
+    // A moves every 5 loops, B every 40: after 12 loops they stand apart.
+    let a = small("tree").with(&[("loops", "5")]);
+    let b = a.clone().with(&[("loops", "40")]);
+    let mut race = Race::new(&[a, b]).unwrap();
+    for _ in 0..12 {
+        race.step_loop();
+    }
+    let points: Vec<TimePoint> = race.runs().iter().map(|r| r.point()).collect();
+    assert_ne!(points[0], points[1], "the boards stand apart");
+    let want: Vec<String> = race.runs().iter().map(state_of).collect();
+    for _ in 0..20 {
+        race.step_loop();
+    }
+    race.seek_each(&points).unwrap();
+    let got: Vec<String> = race.runs().iter().map(state_of).collect();
+    assert_eq!(got, want, "each board where it stood");
+    // One point for both: B, yet to reach A's move 2, shows its latest point
+    // before it (the 32 loops it ran), not where it stood.
+    race.seek(points[0]).unwrap();
+    assert_eq!(race.runs()[1].point(), TimePoint::at(0, 32));
+    // A point for each board, or none: the count is named.
+    let e = race.seek_each(&points[..1]).unwrap_err().to_string();
+    assert!(e.contains("one per run (2)"), "{e}");
+}

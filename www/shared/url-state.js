@@ -16,6 +16,9 @@ export const PHASE_SPEEDS = ['2s', '1s', '0.5s'];
 
 import { LESSONS, lessonAt, lessonSteps } from '../live/lessons.js';
 
+// A link's `at`: a timeline point, or one for each of a race's two boards.
+const POINT = String.raw`\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?`;
+const AT = new RegExp(`^${POINT}(/${POINT})?$`);
 const BOOL = { 1: true, true: true, yes: true, on: true, 0: false, false: false, no: false, off: false };
 
 /**
@@ -84,8 +87,8 @@ export function viewSpecs(races) {
     },
     at: {
       def: '',
-      help: 'a point of the run to open at, paused: MOVE, MOVE.LOOP or MOVE.LOOP.PHASE (phase: select, expand, rollout or backup)',
-      parse: (s) => (/^\d{1,9}(\.\d{1,9}(\.(select|expand|rollout|backup))?)?$/.test(s) ? s : undefined),
+      help: 'a point of the run to open at, paused: MOVE, MOVE.LOOP or MOVE.LOOP.PHASE (phase: select, expand, rollout or backup); in a race whose boards stand at different points, one for each board joined by / (2.2/0.12)',
+      parse: (s) => (AT.test(s) ? s : undefined),
       text: String,
     },
     branch: {
@@ -154,15 +157,23 @@ export function readUrl(engine, schema, search, races = raceOptions(engine, sche
 
 /** A timeline point as a link's `at` ("12.3.rollout"), or '' for the start. */
 export function pointToAt(p) {
-  if (!p || (!p.move && !p.loop && !p.phase)) return '';
-  return [p.move, ...(p.loop || p.phase ? [p.loop] : []), ...(p.phase ? [p.phase] : [])].join('.');
+  if (!p) return '';
+  const one = (q) => [q.move, ...(q.loop || q.phase ? [q.loop] : []), ...(q.phase ? [q.phase] : [])].join('.');
+  // A race's boards at different points (stepped loop by loop): each one's.
+  const each = Array.isArray(p) ? p : (p.runs ?? []).map(({ move, loop, phase }) => ({ move, loop, phase }));
+  if (each.length > 1 && each.some((q) => one(q) !== one(each[0]))) return each.map(one).join('/');
+  const q = each[0] ?? p;
+  return !q.move && !q.loop && !q.phase ? '' : one(q);
 }
 
-/** A link's `at` as a timeline point { move, loop, phase } (null for ''). */
+/** A link's `at` as a timeline point { move, loop, phase }, or one per board (null for ''). */
 export function atToPoint(at) {
   if (!at) return null;
-  const [move, loop = '0', phase = null] = at.split('.');
-  return { move: Number(move), loop: Number(loop), phase };
+  const one = (t) => {
+    const [move, loop = '0', phase = null] = t.split('.');
+    return { move: Number(move), loop: Number(loop), phase };
+  };
+  return at.includes('/') ? at.split('/').map(one) : one(at);
 }
 
 /**

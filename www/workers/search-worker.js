@@ -14,10 +14,12 @@
 //   frame  { requests }                 (at a set speed: that many loops first) answers { frames }
 //   stepLoop / stepMove { requests }    one loop / one move on each unfinished run; answers { frames }
 //   stepPhase { requests }              one phase of the loop in flight on each run; answers { frames, steps }
-//   seek { point, requests }            every run to a timeline point { move, loop, phase }; answers { frames }
+//   seek { point, requests }            every run to a timeline point { move, loop, phase } (or run i
+//                                       to the i-th of an array of them); answers { frames }
 //   back { unit, requests }             one phase | loop | move back; answers { frames }
 //   advanceTo { point, requests }       steps the runs forward as far as `point` (moves, loops,
-//                                       phases), then seeks it exactly; answers { frames }
+//                                       phases; an array: each run to its own), then seeks it
+//                                       exactly; answers { frames }
 //   branch { gen, configs, move }       branches the runs at `move` (made first if not reached yet)
 //                                       with new configs (Race.branch); answers { runs }. Refused:
 //                                       the runs stay where they stood, under their generation
@@ -204,17 +206,17 @@ const HANDLERS = {
   },
   advanceTo(msg) {
     const { race } = st;
-    const p = { loop: 0, phase: null, ...msg.point };
-    const at = () => race.timeline().end;
-    const before = (t) => t.move < p.move || (t.move === p.move && t.loop < p.loop);
-    while (at().move < p.move && race.running()) race.stepMove();
-    while (before(at()) && race.running()) race.stepLoop();
-    for (let k = 0; p.phase && k < 4 && race.running(); k++) {
-      const t = at();
-      if (t.move !== p.move || t.loop !== p.loop || t.phase === p.phase) break;
-      race.stepPhase();
-    }
-    race.seek(p);
+    // One point (the first run's) or one per run; each run's own end is stepped to its point.
+    const each = Array.isArray(msg.point);
+    const want = (each ? msg.point : [msg.point]).map((p) => ({ loop: 0, phase: null, ...p }));
+    const ends = () => race.timeline().runs.map((r) => r.end);
+    const short = (pred) => ends().some((t, i) => want[i] && pred(t, want[i]));
+    const before = (t, p) => t.move < p.move || (t.move === p.move && t.loop < p.loop);
+    while (short((t, p) => t.move < p.move) && race.running()) race.stepMove();
+    while (short(before) && race.running()) race.stepLoop();
+    const inLoop = (t, p) => p.phase && t.move === p.move && t.loop === p.loop && t.phase !== p.phase;
+    for (let k = 0; k < 4 && short(inLoop) && race.running(); k++) race.stepPhase();
+    race.seek(each ? want : want[0]);
     return frames(msg.requests);
   },
   branch(msg) {
