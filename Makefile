@@ -30,6 +30,9 @@ BENCH_EXP_TRIALS ?= 10
 # Browser test files run side by side: most of their time is spent waiting on
 # the page, not computing (`make test E2E_JOBS=1` runs them one at a time).
 E2E_JOBS ?= 2
+# The longest browser test files start first, so that two at a time end together.
+E2E_FILES = $(wildcard $(patsubst %,tests/e2e/%.test.mjs,page screen page-more screen-input config-form)) \
+	$(filter-out $(patsubst %,tests/e2e/%.test.mjs,page screen page-more screen-input config-form),$(wildcard tests/e2e/*.test.mjs))
 # Minutes of `make soak` (`make test` runs a 20-second soak).
 SOAK_MINUTES ?= 10
 
@@ -126,7 +129,7 @@ _test-wasm-and-build:
 
 test-e2e:
 	$(call section,browser end-to-end tests (tests/e2e/*.test.mjs))
-	node --test --test-concurrency=$(E2E_JOBS) tests/e2e/*.test.mjs
+	node --test --test-concurrency=$(E2E_JOBS) $(E2E_FILES)
 	$(call section,soak: 20 s of varied configurations in one page (tests/e2e/soak.mjs; longer: make soak))
 	node tests/e2e/soak.mjs --minutes 0.34
 

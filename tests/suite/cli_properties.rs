@@ -6,7 +6,7 @@
 //! and `experiment` (a generated duplicate of one of these is itself a
 //! usage error, exit 2, which is a case too).
 //!
-//! Cases: `CLI_CASES` (default 10 000, each a process: about 30 s; `make
+//! Cases: `CLI_CASES` (default 3 000, each a process: about 10 s of the suite; `make
 //! fuzz` runs 100 000), seed fixed by proptest's deterministic RNG.
 #![cfg(not(target_arch = "wasm32"))]
 
@@ -110,7 +110,7 @@ fn any_argument_vector_exits_0_or_2_with_one_line() {
     let cases: u32 = std::env::var("CLI_CASES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(10_000);
+        .unwrap_or(3_000);
     // Experiments write their files under the working directory: a fresh one.
     let out = std::env::temp_dir().join(format!("torus-cli-prop-{}", std::process::id()));
     std::fs::create_dir_all(&out).expect("a scratch directory");

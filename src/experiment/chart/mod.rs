@@ -55,14 +55,7 @@ struct Frame {
 
 /// `line` cut to `max` pixels at the notes' size, with an ellipsis.
 fn fit(line: &str, max: f64) -> String {
-    if text::width(line, NOTE_SIZE) <= max {
-        return line.to_string();
-    }
-    let mut s: String = line.to_string();
-    while !s.is_empty() && text::width(&format!("{s}…"), NOTE_SIZE) > max {
-        s.pop();
-    }
-    format!("{s}…")
+    text::cut(line, max, NOTE_SIZE, '…')
 }
 
 /// The caption, one line (two with a provenance, the command second), each
