@@ -2,6 +2,8 @@
 //! decision panel: MCTS's statistics of the four moves with their UCT
 //! terms, a planner's move scores, and how far a plan being made has got.
 
+use crate::game::lattice::{Move, Torus};
+
 /// The statistics of one of the four moves at the decision under way.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct ChildStat {
@@ -54,6 +56,32 @@ pub struct DecisionView {
     pub c: f64,
     /// Per move, in `Move::ALL` order (up, right, down, left).
     pub children: [ChildStat; 4],
+}
+
+impl DecisionView {
+    /// The view at `root` of a table kept per cell (`visits` and summed
+    /// `reward`, indexed by cell): each move's child is its neighbour's
+    /// entry, under a parent count of `parent`.
+    #[inline(always)]
+    pub fn of_table(
+        torus: &Torus,
+        root: u32,
+        c: f64,
+        parent: u32,
+        (visits, reward): (&[u32], &[f64]),
+        selected: [u32; 4],
+    ) -> DecisionView {
+        let children = std::array::from_fn(|i| {
+            let cell = torus.step(root, Move::ALL[i]);
+            let (v, q) = (visits[cell as usize], reward[cell as usize]);
+            ChildStat::new(cell, v, q, parent, c, selected[i])
+        });
+        DecisionView {
+            parent_visits: parent,
+            c,
+            children,
+        }
+    }
 }
 
 /// The UCT terms `(mean, explore, uct)` of a child.

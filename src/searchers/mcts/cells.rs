@@ -33,7 +33,7 @@ use super::uct::argmax_random;
 use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
 use crate::param::{Param, ParamKind, Value};
-use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::decision::DecisionView;
 use crate::searchers::phase::{
     BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
 };
@@ -244,16 +244,8 @@ impl Stats for CellTable {
     /// The decision statistics at `root`.
     fn view(&self, env_torus: &Torus, root: u32, c: f64) -> DecisionView {
         let parent = self.visits[root as usize];
-        let children = std::array::from_fn(|i| {
-            let cell = env_torus.step(root, Move::ALL[i]);
-            let (v, q) = (self.visits[cell as usize], self.reward[cell as usize]);
-            ChildStat::new(cell, v, q, parent, c, self.selected[i])
-        });
-        DecisionView {
-            parent_visits: parent,
-            c,
-            children,
-        }
+        let table = (&self.visits[..], &self.reward[..]);
+        DecisionView::of_table(env_torus, root, c, parent, table, self.selected)
     }
 
     /// Selection: the neighbour with the highest UCT (unvisited ones

@@ -25,7 +25,7 @@
 use super::uct::argmax_random;
 use super::variant::{note_rollout, rollout_traced, star, trace_len, LoopEnv, LoopReport, Stats};
 use crate::game::lattice::{Move, Torus};
-use crate::searchers::decision::{ChildStat, DecisionView};
+use crate::searchers::decision::DecisionView;
 use crate::searchers::phase::{
     BackupEntry, Candidate, Expansion, PhaseRecord, SelectLevel, SelectRule,
 };
@@ -116,16 +116,8 @@ impl CodeTable {
     /// The decision statistics at `root` with its count taken as `parent`.
     #[inline(always)]
     fn view_with(&self, torus: &Torus, root: u32, c: f64, parent: u32) -> DecisionView {
-        let children = std::array::from_fn(|i| {
-            let cell = torus.step(root, Move::ALL[i]);
-            let (v, q) = (self.visits[cell as usize], self.q[cell as usize]);
-            ChildStat::new(cell, v, q, parent, c, self.selected[i])
-        });
-        DecisionView {
-            parent_visits: parent,
-            c,
-            children,
-        }
+        let table = (&self.visits[..], &self.q[..]);
+        DecisionView::of_table(torus, root, c, parent, table, self.selected)
     }
 
     /// What the next loop's selection at `root` reads: the first
