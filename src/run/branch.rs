@@ -163,8 +163,16 @@ pub fn forced(parent: &Episode, at: u32, cfg: &Config) -> Result<Episode, Branch
 /// A [`BranchError`]: a world parameter differs, `at` is past the moves
 /// the parent holds, or `cfg` is invalid.
 pub fn branch(parent: &Episode, at: u32, cfg: &Config) -> Result<Episode, BranchError> {
-    let mut ep = forced(parent, at, cfg)?;
-    while ep.steps() < at && ep.step_move() == Status::Running {}
+    Ok(follow(forced(parent, at, cfg)?, at, |_| {}))
+}
+
+/// A [`forced`] branch made up to move `at`, with `note` shown it after
+/// each shared move and once more at `at` (a timeline records them).
+pub fn follow(mut ep: Episode, at: u32, mut note: impl FnMut(&Episode)) -> Episode {
+    while ep.steps() < at && ep.step_move() == Status::Running {
+        note(&ep);
+    }
+    note(&ep);
     ep.forget_phase();
-    Ok(ep)
+    ep
 }

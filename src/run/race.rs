@@ -120,13 +120,9 @@ impl Race {
             };
             let parent = replayed.as_ref().unwrap_or(&self.runs[i]);
             let shared = parent.steps();
-            let mut ep = branch::forced(parent, shared, cfg)?;
+            let ep = branch::forced(parent, shared, cfg)?;
             let mut tl = Timeline::new(&ep, DEFAULT_CAP_BYTES);
-            while ep.steps() < shared && ep.step_move() == Status::Running {
-                tl.note(&ep);
-            }
-            tl.note(&ep);
-            ep.forget_phase();
+            let ep = branch::follow(ep, shared, |e| tl.note(e));
             let from = BranchPoint {
                 at: shared,
                 config: parent.config().clone(),
